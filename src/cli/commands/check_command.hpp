@@ -1,0 +1,26 @@
+// `mechkin check FILE...`: validate mechanism files and report their mobility.
+//
+// Exit status: 0 when every file is valid and every `expect` holds, 1 otherwise.
+// The JSON report (--format json) has these stable keys:
+//   {"mechkin_check": 1, "ok": bool, "files": [FileReport...]}
+// FileReport: file, valid, name, bodies, joints {type: count}, drivers,
+//   grubler, dof_after_drivers_count, mobility {...} (when valid), expect [{key,
+//   expected, actual, held}], errors [{pointer, message, fix}], warnings [...].
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace mechkin {
+
+struct CheckOptions {
+  std::vector<std::string> files;
+  std::string format = "text";  // text | json
+};
+
+void SetupCheckCommand(CLI::App& app, CheckOptions* options);
+int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace mechkin

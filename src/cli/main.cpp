@@ -1,0 +1,34 @@
+// mechkin command-line entry point. Exit codes: 0 success, 1 invalid input or a
+// failed expectation/run, 2 unusable arguments. Nothing escapes main.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "cli/commands/check_command.hpp"
+#include "cli/commands/run_command.hpp"
+
+int main(int argc, char** argv) {
+  try {
+    CLI::App app{"mechkin: spatial kinematics of mechanisms"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "mechkin 0.1.0");
+    mechkin::CheckOptions check;
+    mechkin::RunOptions run;
+    mechkin::SetupCheckCommand(app, &check);
+    mechkin::SetupRunCommand(app, &run);
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      const int code = app.exit(e);  // prints help/version/error
+      return code == 0 ? 0 : 2;      // CLI11 codes >= 100 become our "unusable arguments"
+    }
+    if (app.got_subcommand("check")) return mechkin::RunCheck(check, std::cout, std::cerr);
+    if (app.got_subcommand("run")) return mechkin::RunRun(run, std::cout, std::cerr);
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "mechkin: internal error: " << e.what() << "\n";
+    return 1;
+  } catch (...) {
+    std::cerr << "mechkin: internal error\n";
+    return 1;
+  }
+}

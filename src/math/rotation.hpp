@@ -1,0 +1,44 @@
+// Euler-parameter kinematics (constraints.md §1.2–§1.4).
+//
+// Notation: p = [e0, e1, e2, e3] (scalar first, unit), A(p) the rotation matrix
+// from body to global, primed quantities are body-frame components.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace mechkin {
+
+using Vec3 = Eigen::Vector3d;
+using Vec4 = Eigen::Vector4d;
+using Mat3 = Eigen::Matrix3d;
+using Mat34 = Eigen::Matrix<double, 3, 4>;
+
+/// Cross-product matrix: Tilde(a) * b == a.cross(b)  (§1.1).
+inline Mat3 Tilde(const Vec3& a) {
+  Mat3 t;
+  t << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return t;
+}
+
+/// G(p) = [-e, -ẽ + e0 I]  (§1.2); ω' = 2 G ṗ.
+Mat34 CalcG(const Vec4& p);
+/// E(p) = [-e, ẽ + e0 I]  (§1.2); ω = 2 E ṗ.
+Mat34 CalcE(const Vec4& p);
+/// A(p) = E Gᵀ = (2e0² − 1) I + 2 (e eᵀ + e0 ẽ)  (§1.2).
+Mat3 CalcA(const Vec4& p);
+/// Quaternion product a ⊗ b (scalar first); A(a ⊗ b) = A(a) A(b).
+Vec4 QuatMultiply(const Vec4& a, const Vec4& b);
+/// Unit Euler parameters of a rotation by `angle` (rad) about unit `axis`.
+Vec4 QuatFromAxisAngle(const Vec3& unit_axis, double angle);
+/// Euler parameters of a proper orthonormal matrix (Shepperd's method: picks the
+/// largest of e0², e1², e2², e3² to stay accurate near 180° rotations).
+Vec4 QuatFromMatrix(const Mat3& R);
+/// Applies a body-frame rotation increment δπ' (rad): p ← p ⊗ [cos(|δπ'|/2), sin(|δπ'|/2) δπ'/|δπ'|]
+/// (§1.5), then renormalizes.
+Vec4 QuatRetractBody(const Vec4& p, const Vec3& delta_pi);
+
+/// Any unit vector perpendicular to unit `h`, chosen deterministically.
+Vec3 AnyPerpendicular(const Vec3& h);
+
+}  // namespace mechkin

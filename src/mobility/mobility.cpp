@@ -1,0 +1,282 @@
+#include "mobility/mobility.hpp"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "constraints/system.hpp"
+#include "solvers/position.hpp"
+
+namespace mechkin {
+
+namespace {
+
+constexpr int kMaxDenseColumns = 1200;  // 200 bodies
+
+struct RankInfo {
+  int rank = 0;
+  double sigma_min_kept = 0, sigma_max_dropped = 0;
+  Eigen::MatrixXd null_basis;  // columns span the kernel (scaled coordinates)
+};
+
+RankInfo CalcRank(const Eigen::MatrixXd& J) {
+  RankInfo info;
+  const int n = static_cast<int>(J.cols());
+  if (J.rows() == 0) {
+    info.null_basis = Eigen::MatrixXd::Identity(n, n);
+    return info;
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  const double smax = sv.size() ? sv[0] : 0;
+  for (int k = 0; k < sv.size(); ++k) {
+    if (sv[k] > kRankThreshold * smax) { ++info.rank; info.sigma_min_kept = sv[k]; }
+    else info.sigma_max_dropped = std::max(info.sigma_max_dropped, sv[k]);
+  }
+  info.null_basis = svd.matrixV().rightCols(n - info.rank);
+  return info;
+}
+
+std::string VecStr(const Vec3& v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "[%.3g, %.3g, %.3g]", std::abs(v.x()) < 5e-13 ? 0.0 : v.x(),
+                std::abs(v.y()) < 5e-13 ? 0.0 : v.y(), std::abs(v.z()) < 5e-13 ? 0.0 : v.z());
+  return buf;
+}
+
+}  // namespace
+
+MobilityReport CalcMobility(const Model& model) {
+  MobilityReport rep;
+  const int n = model.num_bodies();
+  if (6 * n > kMaxDenseColumns) {
+    rep.assembly_message = "more than " + std::to_string(kMaxDenseColumns / 6) +
+                           " bodies: the dense rank analysis is skipped (use the Grübler count)";
+    return rep;
+  }
+  const ConstraintSystem joints(model, false);
+  const ConstraintSystem full(model, true);
+  SystemState state(joints);
+  SolveOptions opt;
+  opt.max_iterations = 100;
+  const SolveSummary assembled = AssembleMinNorm(joints, AllRows(joints), opt, &state);
+  rep.assembly_residual = assembled.residual;
+  rep.equations = joints.num_rows();
+  if (!assembled.success) {
+    rep.assembly_message = "the joints cannot be assembled near the design pose (scaled residual " +
+                           std::to_string(assembled.residual) + "): " + assembled.message;
+    return rep;
+  }
+  rep.assembled = true;
+  rep.assembly_message = "assembled";
+
+  const Eigen::MatrixXd Jj = ScaledJacobian(joints, state);
+  RankInfo info = CalcRank(Jj);
+  // Guard against an unlucky (singular) design pose: move along the free motion
+  // and take the largest rank seen.
+  if (info.null_basis.cols() > 0) {
+    std::mt19937 rng(12345);
+    std::normal_distribution<double> nd;
+    const double L = model.characteristic_length;
+    for (int trial = 0; trial < 2; ++trial) {
+      SystemState moved = state;
+      Eigen::VectorXd c(info.null_basis.cols());
+      for (int k = 0; k < c.size(); ++k) c[k] = nd(rng);
+      Eigen::VectorXd dq = info.null_basis * c.normalized() * 0.05;
+      for (int b = 0; b < n; ++b) dq.segment<3>(6 * b) *= L;
+      ApplyStep(dq, &moved);
+      if (!AssembleMinNorm(joints, AllRows(joints), opt, &moved).success) continue;
+      RankInfo other = CalcRank(ScaledJacobian(joints, moved));
+      if (other.rank > info.rank) {
+        info = other;
+        state = moved;
+      }
+    }
+  }
+  const Eigen::MatrixXd J = ScaledJacobian(joints, state);
+  rep.rank = info.rank;
+  rep.sigma_min_kept = info.sigma_min_kept;
+  rep.sigma_max_dropped = info.sigma_max_dropped;
+  rep.mobility = 6 * n - info.rank;
+  rep.redundant = joints.num_rows() - info.rank;
+
+  // Name the redundant equations: greedy in file order, later equations are the redundant ones.
+  std::vector<int> dependent;
+  const std::vector<int> kept = IndependentRows(J, 1e-7, &dependent);
+  for (int row : dependent) {
+    RedundantEquation eq;
+    eq.row = row;
+    eq.description = joints.DescribeRow(row);
+    Eigen::MatrixXd K(kept.size(), J.cols());
+    for (size_t k = 0; k < kept.size(); ++k) K.row(k) = J.row(kept[k]);
+    const Eigen::VectorXd coef = K.transpose().completeOrthogonalDecomposition().solve(J.row(row).transpose());
+    const double cmax = coef.cwiseAbs().maxCoeff();
+    std::set<std::string> names;
+    for (size_t k = 0; k < kept.size(); ++k)
+      if (std::abs(coef[k]) > 1e-6 * cmax) names.insert(joints.SourceName(kept[k]));
+    names.erase(joints.SourceName(row));
+    eq.fixed_by.assign(names.begin(), names.end());
+    rep.redundant_equations.push_back(eq);
+  }
+
+  // Driving status: rank of joints + drivers at the same pose.
+  SystemState fstate(full);
+  fstate.bodies = state.bodies;
+  fstate.angle_ref.assign(full.entries().size(), 0.0);
+  const Eigen::MatrixXd Jf = ScaledJacobian(full, fstate);
+  const RankInfo finfo = CalcRank(Jf);
+  rep.dof_after_drivers = 6 * n - finfo.rank;
+  std::vector<int> fdep;
+  IndependentRows(Jf, 1e-7, &fdep);
+  std::set<std::string> conflicting;
+  for (int row : fdep)
+    if (row >= full.num_joint_rows()) conflicting.insert(full.SourceName(row));
+  rep.conflicting_drivers.assign(conflicting.begin(), conflicting.end());
+  rep.driver_rank_deficit = static_cast<int>(model.drivers.size()) - (finfo.rank - info.rank);
+
+  // Idle freedoms: a body, or two bodies joined by a joint, moving together as one
+  // rigid group while everything else is still, no driver coordinate and no output
+  // point moves.
+  const double L = model.characteristic_length;
+  std::vector<std::vector<int>> groups;
+  for (int b = 0; b < n; ++b) groups.push_back({b});
+  for (const auto& jt : model.joints)
+    if (jt.body1 != kGround && jt.body2 != kGround) groups.push_back({std::min(jt.body1, jt.body2), std::max(jt.body1, jt.body2)});
+  std::sort(groups.begin(), groups.end());
+  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  std::vector<Eigen::VectorXd> idle_motions;
+  for (const auto& g : groups) {
+    // T maps a group twist (ω global, v at the global origin; scaled by L) to q̇ (scaled).
+    Eigen::MatrixXd T = Eigen::MatrixXd::Zero(6 * n, 6);
+    for (int b : g) {
+      const Vec3 r = state.bodies[b].r[0];
+      const Mat3& A = state.bodies[b].A;
+      T.block(6 * b, 0, 3, 3) = -Tilde(r) / L;  // ṙ = v + ω × r
+      T.block(6 * b, 3, 3, 3) = Mat3::Identity();
+      T.block(6 * b + 3, 0, 3, 3) = A.transpose();
+    }
+    Eigen::MatrixXd S = Jf * T;
+    // Output points on the group's bodies must not move.
+    for (const auto& o : model.outputs)
+      for (BodyIndex ob : {o.body1, o.body2})
+        if (ob != kGround && std::find(g.begin(), g.end(), ob) != g.end() && o.kind != OutputKind::JointCoordinate) {
+          const Vec3 s = ob == o.body1 ? o.point1 : o.point2;
+          const Vec3 P = state.bodies[ob].r[0] + state.bodies[ob].A * s;
+          Eigen::MatrixXd Vp(3, 6);
+          Vp.leftCols(3) = -Tilde(P) / L;
+          Vp.rightCols(3) = Mat3::Identity();
+          Eigen::MatrixXd S2(S.rows() + 3, 6);
+          S2 << S, Vp;
+          S = S2;
+        }
+    const RankInfo gi = CalcRank(S);
+    for (int c = 0; c < gi.null_basis.cols(); ++c) {
+      const Eigen::VectorXd motion = T * gi.null_basis.col(c);
+      // New direction only if independent of the idle motions found so far.
+      Eigen::MatrixXd M(6 * n, idle_motions.size() + 1);
+      for (size_t k = 0; k < idle_motions.size(); ++k) M.col(k) = idle_motions[k];
+      M.col(idle_motions.size()) = motion;
+      if (CalcRank(M.transpose()).rank <= static_cast<int>(idle_motions.size())) continue;
+      idle_motions.push_back(motion);
+      IdleFreedom f;
+      const Vec3 w = gi.null_basis.col(c).head<3>();
+      f.axis = w.norm() > 0 ? Vec3(w.normalized()) : Vec3::Zero();
+      std::string names;
+      for (int b : g) f.body += (f.body.empty() ? "" : "+") + model.bodies[b].name;
+      f.description = (g.size() == 1 ? "body `" + f.body + "`" : "bodies `" + f.body + "` together") +
+                      (w.norm() > 0 ? " spin about their own axis " + VecStr(f.axis) : " slide") +
+                      " without moving anything else; model " +
+                      (g.size() == 1 ? "the link as a `distance` joint instead of a body"
+                                     : "the leg with fewer bodies or lock the spin") +
+                      " if nothing but its length matters";
+      rep.idle.push_back(f);
+    }
+  }
+  const int idle = static_cast<int>(rep.idle.size());
+  if (!rep.conflicting_drivers.empty()) rep.driving_status = "over";
+  else if (rep.dof_after_drivers - idle > 0) rep.driving_status = "under";
+  else rep.driving_status = "full";
+  if (rep.driving_status == "under") {
+    // Name the remaining freedoms by the bodies they move most.
+    const RankInfo rest = CalcRank(Jf);
+    for (int c = 0; c < rest.null_basis.cols() && static_cast<int>(rep.remaining_freedoms.size()) < rep.dof_after_drivers - idle; ++c) {
+      const Eigen::VectorXd v = rest.null_basis.col(c);
+      std::vector<std::pair<double, int>> mv;
+      for (int b = 0; b < n; ++b) mv.emplace_back(v.segment<6>(6 * b).norm(), b);
+      std::sort(mv.rbegin(), mv.rend());
+      std::string s = "a freedom moving ";
+      int listed = 0;
+      for (const auto& [mag, b] : mv)
+        if (mag > 1e-6 && listed < 4) s += (listed++ ? ", `" : "`") + model.bodies[b].name + "`";
+      rep.remaining_freedoms.push_back(s + " is not driven");
+    }
+  }
+  if (rep.redundant > 0)
+    rep.verdict = "overconstrained: " + std::to_string(rep.redundant) + " redundant equation" +
+                  (rep.redundant == 1 ? "" : "s") + " — the Grübler count undercounts the mobility";
+  return rep;
+}
+
+nlohmann::json MobilityReportJson(const Model& model, const MobilityReport& r) {
+  (void)model;
+  nlohmann::json j;
+  j["assembled"] = r.assembled;
+  j["assembly"] = r.assembly_message;
+  if (!r.assembled) return j;
+  j["equations"] = r.equations;
+  j["rank"] = r.rank;
+  j["mobility"] = r.mobility;
+  j["redundant"] = r.redundant;
+  j["rank_threshold"] = kRankThreshold;
+  j["sigma_min_kept"] = r.sigma_min_kept;
+  j["sigma_max_dropped"] = r.sigma_max_dropped;
+  j["redundant_equations"] = nlohmann::json::array();
+  for (const auto& e : r.redundant_equations)
+    j["redundant_equations"].push_back({{"equation", e.description}, {"fixed_by", e.fixed_by}});
+  j["idle"] = nlohmann::json::array();
+  for (const auto& f : r.idle)
+    j["idle"].push_back({{"bodies", f.body}, {"axis", {f.axis.x(), f.axis.y(), f.axis.z()}}, {"description", f.description}});
+  j["dof_after_drivers"] = r.dof_after_drivers;
+  j["driven"] = r.driving_status;
+  j["conflicting_drivers"] = r.conflicting_drivers;
+  j["remaining_freedoms"] = r.remaining_freedoms;
+  j["verdict"] = r.verdict;
+  return j;
+}
+
+void PrintMobilityText(const nlohmann::json& m, std::ostream& out) {
+  if (!m.value("assembled", false)) {
+    out << "  mobility: not computed — " << m.value("assembly", std::string()) << "\n";
+    return;
+  }
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "  mobility (rank): %d  [rank %d of %d equations; margin: smallest kept σ %.2e, largest dropped σ %.2e]\n",
+                m["mobility"].get<int>(), m["rank"].get<int>(), m["equations"].get<int>(),
+                m["sigma_min_kept"].get<double>(), m["sigma_max_dropped"].get<double>());
+  out << buf;
+  out << "  redundant equations: " << m["redundant"].get<int>() << "\n";
+  for (const auto& e : m["redundant_equations"]) {
+    out << "    - " << e["equation"].get<std::string>();
+    const auto& fb = e["fixed_by"];
+    if (!fb.empty()) {
+      out << " is already fixed by joints ";
+      for (size_t k = 0; k < fb.size(); ++k) out << (k ? ", " : "") << fb[k].get<std::string>();
+    }
+    out << "\n";
+  }
+  if (!m["verdict"].get<std::string>().empty()) out << "  verdict: " << m["verdict"].get<std::string>() << "\n";
+  out << "  idle freedoms: " << m["idle"].size() << "\n";
+  for (const auto& f : m["idle"]) out << "    - " << f["description"].get<std::string>() << "\n";
+  out << "  DOF after drivers: " << m["dof_after_drivers"].get<int>() << " — driven: " << m["driven"].get<std::string>();
+  if (!m["conflicting_drivers"].empty()) {
+    out << " (conflicting drivers: ";
+    for (size_t k = 0; k < m["conflicting_drivers"].size(); ++k) out << (k ? ", " : "") << m["conflicting_drivers"][k].get<std::string>();
+    out << ")";
+  }
+  out << "\n";
+  for (const auto& f : m["remaining_freedoms"]) out << "    - " << f.get<std::string>() << "\n";
+}
+
+}  // namespace mechkin

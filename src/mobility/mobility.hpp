@@ -1,0 +1,60 @@
+// Rank-based mobility at the assembled design configuration (constraints.md §6):
+//   M = 6n − rank[Φ_r Φ_π'] (joints only), redundant = m − rank,
+// with the rank from an SVD of the dimensionless Jacobian (rows divided by
+// L^power, translation columns multiplied by L) and the threshold
+//   σ_k kept  ⇔  σ_k > 1e-8 · σ_max.
+// The margin (smallest kept and largest discarded singular value) is reported
+// so a user can judge how robust the answer is. The rank is also evaluated at
+// two further poses reached along the free motion; the largest rank seen (the
+// generic one) is used.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "model/model.hpp"
+
+namespace mechkin {
+
+constexpr double kRankThreshold = 1e-8;
+
+struct RedundantEquation {
+  int row;
+  std::string description;          // "joint `J4` (revolute): rotation about its frame's f axis"
+  std::vector<std::string> fixed_by;  // joints whose equations already fix it
+};
+
+struct IdleFreedom {
+  std::string body;
+  Vec3 axis;  // global direction of the idle spin (unit)
+  std::string description;
+};
+
+struct MobilityReport {
+  bool assembled = false;
+  std::string assembly_message;
+  double assembly_residual = 0;
+  int equations = 0;
+  int rank = 0;
+  int mobility = 0;
+  int redundant = 0;
+  double sigma_min_kept = 0, sigma_max_dropped = 0;
+  std::vector<RedundantEquation> redundant_equations;
+  std::vector<IdleFreedom> idle;
+  // Driving
+  int driver_rank_deficit = 0;
+  int dof_after_drivers = 0;
+  std::string driving_status;  // "full", "under", "over"
+  std::vector<std::string> conflicting_drivers;
+  std::vector<std::string> remaining_freedoms;
+  std::string verdict;
+  std::vector<std::string> suggestions;
+};
+
+MobilityReport CalcMobility(const Model& model);
+nlohmann::json MobilityReportJson(const Model& model, const MobilityReport& r);
+void PrintMobilityText(const nlohmann::json& mobility_json, std::ostream& out);
+
+}  // namespace mechkin

@@ -1,0 +1,911 @@
+#include "model/loader.hpp"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "model/frames.hpp"
+
+namespace mechkin {
+
+using nlohmann::json;
+
+std::string Diagnostic::ToString() const {
+  std::string s = (pointer.empty() ? std::string("(file)") : pointer) + ": " + message;
+  if (!fix.empty()) s += " — " + fix;
+  return s;
+}
+
+namespace {
+
+std::string EscapeToken(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+std::string Join(const std::vector<std::string>& v) {
+  std::string s;
+  for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + v[i];
+  return s;
+}
+
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string DidYouMean(const std::string& word, const std::vector<std::string>& choices) {
+  std::string best;
+  size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;
+  for (const auto& c : choices) {
+    const size_t d = EditDistance(word, c);
+    if (d < best_d) { best_d = d; best = c; }
+  }
+  return best;
+}
+
+std::string TypeName(const json& j) {
+  switch (j.type()) {
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return "a boolean";
+    case json::value_t::string: return "a string";
+    case json::value_t::array: return "an array";
+    case json::value_t::object: return "an object";
+    case json::value_t::number_float:
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned: return "a number";
+    default: return "an unsupported value";
+  }
+}
+
+std::string Shorten(const std::string& s) { return s.size() > 40 ? s.substr(0, 37) + "..." : s; }
+
+// Walks one file, collecting diagnostics.
+class Reader {
+ public:
+  explicit Reader(LoadResult* out) : out_(out) {}
+
+  void Error(const std::string& ptr, const std::string& msg, const std::string& fix = "") {
+    out_->errors.push_back({ptr, msg, fix});
+  }
+  void Warn(const std::string& ptr, const std::string& msg, const std::string& fix = "") {
+    out_->warnings.push_back({ptr, msg, fix});
+  }
+
+  // Reports unknown and missing keys of `obj`. Returns false when obj is not an object.
+  bool CheckObject(const json& obj, const std::string& ptr, const std::vector<std::string>& allowed,
+                   const std::vector<std::string>& required, const std::string& what) {
+    if (!obj.is_object()) {
+      Error(ptr, what + " must be a JSON object, not " + TypeName(obj));
+      return false;
+    }
+    for (const auto& item : obj.items()) {
+      if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end()) {
+        const std::string guess = DidYouMean(item.key(), allowed);
+        Error(ptr + "/" + EscapeToken(item.key()), "unknown key '" + Shorten(item.key()) + "' in " + what,
+              guess.empty() ? "allowed keys: " + Join(allowed) : "did you mean '" + guess + "'?");
+      }
+    }
+    for (const auto& key : required)
+      if (!obj.contains(key)) Error(ptr + "/" + key, "missing key '" + key + "' in " + what, "add it");
+    return true;
+  }
+
+  std::optional<double> Number(const json& obj, const std::string& key, const std::string& ptr) {
+    if (!obj.contains(key)) return std::nullopt;
+    const json& v = obj.at(key);
+    if (!v.is_number()) {
+      Error(ptr + "/" + key, "'" + key + "' must be a number, not " + TypeName(v),
+            v.is_string() ? "write the number without quotes (NaN and Infinity are not allowed)" : "");
+      return std::nullopt;
+    }
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) {
+      Error(ptr + "/" + key, "'" + key + "' is not a finite number", "use a finite value");
+      return std::nullopt;
+    }
+    return d;
+  }
+
+  std::optional<int> Integer(const json& obj, const std::string& key, const std::string& ptr) {
+    if (!obj.contains(key)) return std::nullopt;
+    const json& v = obj.at(key);
+    if (v.is_number_integer() || v.is_number_unsigned()) {
+      if (v.is_number_unsigned() ? v.get<unsigned long long>() > 1000000000ull
+                                 : std::llabs(v.get<long long>()) > 1000000000ll) {
+        Error(ptr + "/" + key, "'" + key + "' is out of range", "use an integer of magnitude below 1e9");
+        return std::nullopt;
+      }
+      return static_cast<int>(v.get<long long>());
+    }
+    if (v.is_number_float()) {
+      const double d = v.get<double>();
+      if (std::isfinite(d) && d == std::floor(d) && std::abs(d) <= 1e9) return static_cast<int>(d);
+    }
+    Error(ptr + "/" + key, "'" + key + "' must be an integer, not " + TypeName(v));
+    return std::nullopt;
+  }
+
+  std::optional<std::string> String(const json& obj, const std::string& key, const std::string& ptr) {
+    if (!obj.contains(key)) return std::nullopt;
+    const json& v = obj.at(key);
+    if (!v.is_string()) {
+      Error(ptr + "/" + key, "'" + key + "' must be a string, not " + TypeName(v));
+      return std::nullopt;
+    }
+    return v.get<std::string>();
+  }
+
+  // A name usable in table column headers.
+  std::optional<std::string> Name(const json& obj, const std::string& ptr, const std::string& what) {
+    auto s = String(obj, "name", ptr);
+    if (!s) return std::nullopt;
+    const bool ok = !s->empty() && s->size() <= 64 && (std::isalpha(static_cast<unsigned char>((*s)[0])) || (*s)[0] == '_') &&
+                    std::all_of(s->begin(), s->end(), [](char c) {
+                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+                    });
+    if (!ok) {
+      Error(ptr + "/name", "invalid " + what + " name '" + Shorten(*s) + "'",
+            "use 1-64 letters, digits, '_' or '-', starting with a letter or '_' (names become table columns)");
+      return std::nullopt;
+    }
+    return s;
+  }
+
+  std::optional<Vec3> Vector(const json& obj, const std::string& key, const std::string& ptr, bool nonzero) {
+    if (!obj.contains(key)) return std::nullopt;
+    const json& v = obj.at(key);
+    const std::string p = ptr + "/" + key;
+    if (!v.is_array() || v.size() != 3) {
+      Error(p, "'" + key + "' must be an array of 3 numbers [x, y, z], not " +
+                   (v.is_array() ? "an array of " + std::to_string(v.size()) : TypeName(v)));
+      return std::nullopt;
+    }
+    Vec3 out;
+    for (int k = 0; k < 3; ++k) {
+      if (!v[k].is_number()) {
+        Error(p + "/" + std::to_string(k), "component must be a number, not " + TypeName(v[k]),
+              v[k].is_string() ? "write the number without quotes (NaN and Infinity are not allowed)" : "");
+        return std::nullopt;
+      }
+      out[k] = v[k].get<double>();
+      if (!std::isfinite(out[k])) {
+        Error(p + "/" + std::to_string(k), "component is not a finite number", "use a finite value");
+        return std::nullopt;
+      }
+    }
+    if (nonzero && !(out.norm() > 0)) {
+      Error(p, "'" + key + "' has zero length", "give a non-zero direction vector");
+      return std::nullopt;
+    }
+    if (nonzero && !std::isfinite(out.norm())) {
+      Error(p, "'" + key + "' is too large to normalise", "scale the direction down");
+      return std::nullopt;
+    }
+    return out;
+  }
+
+  // Reference to a body by name: ground gives kGround.
+  std::optional<BodyIndex> BodyRef(const json& obj, const std::string& key, const std::string& ptr,
+                                   const std::map<std::string, BodyIndex>& bodies) {
+    auto s = String(obj, key, ptr);
+    if (!s) return std::nullopt;
+    if (*s == "ground") return kGround;
+    const auto it = bodies.find(*s);
+    if (it == bodies.end()) {
+      std::vector<std::string> names = {"ground"};
+      for (const auto& kv : bodies) names.push_back(kv.first);
+      const std::string guess = DidYouMean(*s, names);
+      Error(ptr + "/" + key, "unknown body '" + Shorten(*s) + "'",
+            (guess.empty() ? "" : "did you mean '" + guess + "'? ") + "valid bodies: " + Join(names));
+      return std::nullopt;
+    }
+    return it->second;
+  }
+
+ private:
+  LoadResult* out_;
+};
+
+struct JointTypeInfo {
+  JointType type;
+  const char* name;
+  std::vector<std::string> geometry;  // required geometry keys
+  std::vector<std::string> optional;
+};
+
+const std::vector<JointTypeInfo>& JointTypes() {
+  static const std::vector<JointTypeInfo> kTypes = {
+      {JointType::Revolute, "revolute", {"origin", "axis"}, {}},
+      {JointType::Prismatic, "prismatic", {"origin", "axis"}, {}},
+      {JointType::Screw, "screw", {"origin", "axis", "pitch"}, {}},
+      {JointType::Cylindrical, "cylindrical", {"origin", "axis"}, {}},
+      {JointType::Universal, "universal", {"origin", "axis1", "axis2"}, {}},
+      {JointType::Spherical, "spherical", {"origin"}, {}},
+      {JointType::Planar, "planar", {"origin", "normal"}, {}},
+      {JointType::Distance, "distance", {"point1", "point2"}, {"length"}},
+  };
+  return kTypes;
+}
+
+// Orientation forms (format-v1 "orientation").
+std::optional<Vec4> ReadOrientation(Reader& rd, const json& o, const std::string& ptr, double angle_scale) {
+  if (!o.is_object()) {
+    rd.Error(ptr, "'orientation' must be an object, not " + TypeName(o),
+             "use {\"axis\": [x,y,z], \"angle\": a}, {\"euler_parameters\": [e0,e1,e2,e3]} or {\"matrix\": [[..],[..],[..]]}");
+    return std::nullopt;
+  }
+  const std::vector<std::string> allowed = {"axis", "angle", "euler_parameters", "matrix"};
+  rd.CheckObject(o, ptr, allowed, {}, "an orientation");
+  const int forms = (o.contains("axis") || o.contains("angle")) + o.contains("euler_parameters") + o.contains("matrix");
+  if (forms != 1) {
+    rd.Error(ptr, forms == 0 ? "orientation gives no form" : "orientation gives more than one form",
+             "give exactly one of axis+angle, euler_parameters, matrix");
+    return std::nullopt;
+  }
+  if (o.contains("axis") || o.contains("angle")) {
+    if (!o.contains("axis")) { rd.Error(ptr + "/axis", "missing key 'axis' next to 'angle'", "add the rotation axis"); return std::nullopt; }
+    if (!o.contains("angle")) { rd.Error(ptr + "/angle", "missing key 'angle' next to 'axis'", "add the rotation angle"); return std::nullopt; }
+    auto axis = rd.Vector(o, "axis", ptr, true);
+    auto angle = rd.Number(o, "angle", ptr);
+    if (!axis || !angle) return std::nullopt;
+    return QuatFromAxisAngle(axis->normalized(), *angle * angle_scale);
+  }
+  if (o.contains("euler_parameters")) {
+    const json& e = o.at("euler_parameters");
+    const std::string p = ptr + "/euler_parameters";
+    if (!e.is_array() || e.size() != 4) {
+      rd.Error(p, "'euler_parameters' must be an array of 4 numbers [e0, e1, e2, e3] (scalar first)");
+      return std::nullopt;
+    }
+    Vec4 q;
+    for (int k = 0; k < 4; ++k) {
+      if (!e[k].is_number() || !std::isfinite(e[k].get<double>())) {
+        rd.Error(p + "/" + std::to_string(k), "component must be a finite number");
+        return std::nullopt;
+      }
+      q[k] = e[k].get<double>();
+    }
+    if (!(q.norm() > 1e-12) || !std::isfinite(q.norm())) {
+      rd.Error(p, "Euler parameters have (almost) zero length", "give a unit quaternion, e.g. [1, 0, 0, 0]");
+      return std::nullopt;
+    }
+    if (std::abs(q.norm() - 1) > 1e-6) rd.Warn(p, "Euler parameters are not unit length; normalised");
+    return q.normalized();
+  }
+  const json& m = o.at("matrix");
+  const std::string p = ptr + "/matrix";
+  Mat3 R;
+  if (!m.is_array() || m.size() != 3) {
+    rd.Error(p, "'matrix' must be 3 rows of 3 numbers");
+    return std::nullopt;
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (!m[i].is_array() || m[i].size() != 3) {
+      rd.Error(p + "/" + std::to_string(i), "each matrix row must be an array of 3 numbers");
+      return std::nullopt;
+    }
+    for (int j = 0; j < 3; ++j) {
+      if (!m[i][j].is_number() || !std::isfinite(m[i][j].get<double>())) {
+        rd.Error(p + "/" + std::to_string(i) + "/" + std::to_string(j), "matrix entry must be a finite number");
+        return std::nullopt;
+      }
+      R(i, j) = m[i][j].get<double>();
+    }
+  }
+  // Re-orthonormalise small CAD round-off silently, larger defects with a warning,
+  // and reject matrices that are not rotations at all.
+  const double defect = (R.transpose() * R - Mat3::Identity()).norm();
+  if (!(defect <= 1e-2) || !(R.determinant() > 0)) {
+    rd.Error(p, "matrix is not a rotation (orthonormality defect " + std::to_string(defect) +
+                    (R.determinant() > 0 ? "" : ", determinant <= 0") + ")",
+             "give a proper orthonormal matrix (columns = body axes in global components)");
+    return std::nullopt;
+  }
+  if (defect > 1e-9)
+    rd.Warn(p, "matrix is not exactly orthonormal (defect " + std::to_string(defect) + "); re-orthonormalised");
+  Eigen::JacobiSVD<Mat3> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return QuatFromMatrix(svd.matrixU() * svd.matrixV().transpose());
+}
+
+std::optional<TimeFunction> ReadFunction(Reader& rd, const json& f, const std::string& ptr, double scale) {
+  if (f.is_string()) {
+    try {
+      auto e = std::make_shared<Expression>(Expression::Parse(f.get<std::string>()));
+      return TimeFunction(e, scale);
+    } catch (const ExpressionError& err) {
+      rd.Error(ptr, std::string("bad expression at column ") + std::to_string(err.column) + ": " + err.what(),
+               "expressions use t, numbers, + - * / ^, parentheses, pi and sin cos tan asin acos atan atan2 exp log sqrt");
+      return std::nullopt;
+    }
+  }
+  if (f.is_number()) {
+    rd.Error(ptr, "'function' must be a string expression or a table", "write the constant as a string, e.g. \"" +
+                                                                          f.dump() + "\"");
+    return std::nullopt;
+  }
+  if (!f.is_object()) {
+    rd.Error(ptr, "'function' must be a string expression or {\"table\": [[t, v], ...]}, not " + TypeName(f));
+    return std::nullopt;
+  }
+  if (!rd.CheckObject(f, ptr, {"table"}, {"table"}, "a table function")) return std::nullopt;
+  if (!f.contains("table")) return std::nullopt;
+  const json& tab = f.at("table");
+  if (!tab.is_array() || tab.size() < 2) {
+    rd.Error(ptr + "/table", "'table' must be an array of at least 2 rows [t, value]");
+    return std::nullopt;
+  }
+  std::vector<double> ts, vs;
+  for (size_t k = 0; k < tab.size(); ++k) {
+    const json& row = tab[k];
+    const std::string rp = ptr + "/table/" + std::to_string(k);
+    if (!row.is_array() || row.size() != 2 || !row[0].is_number() || !row[1].is_number()) {
+      rd.Error(rp, "table row must be [t, value] with two numbers");
+      return std::nullopt;
+    }
+    ts.push_back(row[0].get<double>());
+    vs.push_back(row[1].get<double>());
+    if (!std::isfinite(ts.back()) || !std::isfinite(vs.back())) {
+      rd.Error(rp, "table row has a non-finite number");
+      return std::nullopt;
+    }
+    if (k > 0 && !(ts[k] > ts[k - 1])) {
+      rd.Error(rp + "/0", "table times must increase strictly", "sort the rows by time and remove duplicates");
+      return std::nullopt;
+    }
+  }
+  try {
+    return TimeFunction(std::make_shared<TableSpline>(ts, vs), scale);
+  } catch (const std::exception& e) {
+    rd.Error(ptr + "/table", e.what());
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+LoadResult LoadMechanismText(const std::string& text, const std::string& source_name) {
+  LoadResult result;
+  Reader rd(&result);
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // Convert the byte offset into line and column.
+    size_t line = 1, col = 1;
+    const size_t end = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    for (size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
+    }
+    std::string what = e.what();
+    const auto pos = what.find("syntax error");
+    if (pos != std::string::npos) what = what.substr(pos);
+    rd.Error("", "JSON syntax error at line " + std::to_string(line) + ", column " + std::to_string(col) + ": " + what,
+             text.empty() ? "the file is empty; start from a file in mechanisms/" : "fix the JSON syntax");
+    return result;
+  } catch (const std::exception& e) {
+    rd.Error("", std::string("cannot parse the file as JSON: ") + e.what());
+    return result;
+  }
+
+  Model model;
+  model.source = source_name;
+  if (!rd.CheckObject(doc, "", {"mechkin", "name", "description", "units", "bodies", "joints", "drivers", "analysis",
+                                "outputs", "expect"},
+                      {"mechkin", "bodies", "joints"}, "the mechanism file"))
+    return result;
+
+  if (auto v = rd.Integer(doc, "mechkin", ""); v && *v != 1)
+    rd.Error("/mechkin", "unsupported format version " + std::to_string(*v), "this mechkin reads version 1");
+  if (auto s = rd.String(doc, "name", "")) model.name = *s;
+  if (auto s = rd.String(doc, "description", "")) model.description = *s;
+
+  // Units first: every other number depends on them.
+  if (doc.contains("units")) {
+    const json& u = doc.at("units");
+    if (rd.CheckObject(u, "/units", {"length", "angle"}, {}, "'units'")) {
+      if (auto s = rd.String(u, "length", "/units")) {
+        if (auto f = LengthUnitToSi(*s)) { model.units.length_name = *s; model.units.length_to_si = *f; }
+        else {
+          const std::string g = DidYouMean(*s, LengthUnitNames());
+          rd.Error("/units/length", "unknown length unit '" + Shorten(*s) + "'",
+                   (g.empty() ? "" : "did you mean '" + g + "'? ") + "use one of " + Join(LengthUnitNames()));
+        }
+      }
+      if (auto s = rd.String(u, "angle", "/units")) {
+        if (auto f = AngleUnitToSi(*s)) { model.units.angle_name = *s; model.units.angle_to_si = *f; }
+        else {
+          const std::string g = DidYouMean(*s, AngleUnitNames());
+          rd.Error("/units/angle", "unknown angle unit '" + Shorten(*s) + "'",
+                   (g.empty() ? "" : "did you mean '" + g + "'? ") + "use one of " + Join(AngleUnitNames()));
+        }
+      }
+    }
+  }
+  const double L = model.units.length_to_si, ANG = model.units.angle_to_si;
+  auto length_vec = [&](const json& o, const std::string& key, const std::string& ptr) -> std::optional<Vec3> {
+    auto v = rd.Vector(o, key, ptr, false);
+    if (v) *v *= L;
+    return v;
+  };
+
+  // ---- bodies
+  std::map<std::string, BodyIndex> body_index;
+  if (doc.contains("bodies")) {
+    const json& bodies = doc.at("bodies");
+    if (!bodies.is_array()) rd.Error("/bodies", "'bodies' must be an array of body objects, not " + TypeName(bodies));
+    else
+      for (size_t k = 0; k < bodies.size(); ++k) {
+        const std::string ptr = "/bodies/" + std::to_string(k);
+        const json& b = bodies[k];
+        if (!rd.CheckObject(b, ptr, {"name", "description", "position", "orientation"}, {"name", "position"}, "a body"))
+          continue;
+        Body body;
+        auto name = rd.Name(b, ptr, "body");
+        auto pos = length_vec(b, "position", ptr);
+        body.euler = Vec4(1, 0, 0, 0);
+        bool ok = name && pos;
+        if (b.contains("orientation")) {
+          auto q = ReadOrientation(rd, b.at("orientation"), ptr + "/orientation", ANG);
+          if (q) body.euler = *q; else ok = false;
+        }
+        if (name && *name == "ground") {
+          rd.Error(ptr + "/name", "'ground' is reserved for the fixed frame and cannot be a moving body",
+                   "rename the body, or attach parts to ground directly");
+          ok = false;
+        } else if (name && body_index.count(*name)) {
+          rd.Error(ptr + "/name", "duplicate body name '" + *name + "'", "give every body a unique name");
+          ok = false;
+        }
+        if (!ok) {
+          if (name && *name != "ground") body_index.emplace(*name, -2);  // known name, invalid body
+          continue;
+        }
+        body.name = *name;
+        body.position = *pos;
+        body_index[body.name] = static_cast<BodyIndex>(model.bodies.size());
+        model.bodies.push_back(body);
+      }
+  }
+  // Bodies that failed validation are known by name (-2) so that references to
+  // them do not produce a second, misleading error.
+  auto body_ref = [&](const json& o, const std::string& key, const std::string& ptr) -> std::optional<BodyIndex> {
+    auto b = rd.BodyRef(o, key, ptr, body_index);
+    if (b && *b == -2) return std::nullopt;
+    return b;
+  };
+  auto pose = [&](BodyIndex b) -> std::pair<Vec3, Mat3> {
+    if (b == kGround) return {Vec3::Zero(), Mat3::Identity()};
+    return {model.bodies[b].position, CalcA(model.bodies[b].euler)};
+  };
+  auto local_point = [&](BodyIndex b, const Vec3& global) {
+    auto [r, A] = pose(b);
+    return Vec3(A.transpose() * (global - r));
+  };
+
+  // ---- joints
+  std::map<std::string, int> joint_index;
+  std::vector<std::string> joint_type_names;
+  for (const auto& t : JointTypes()) joint_type_names.push_back(t.name);
+  if (doc.contains("joints")) {
+    const json& joints = doc.at("joints");
+    if (!joints.is_array()) rd.Error("/joints", "'joints' must be an array of joint objects, not " + TypeName(joints));
+    else
+      for (size_t k = 0; k < joints.size(); ++k) {
+        const std::string ptr = "/joints/" + std::to_string(k);
+        const json& jj = joints[k];
+        if (!jj.is_object()) { rd.Error(ptr, "a joint must be a JSON object, not " + TypeName(jj)); continue; }
+        auto type_s = rd.String(jj, "type", ptr);
+        const JointTypeInfo* info = nullptr;
+        if (type_s) {
+          for (const auto& t : JointTypes()) if (*type_s == t.name) info = &t;
+          if (!info) {
+            const std::string g = DidYouMean(*type_s, joint_type_names);
+            rd.Error(ptr + "/type", "unknown joint type '" + Shorten(*type_s) + "'",
+                     (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(joint_type_names));
+          }
+        }
+        std::vector<std::string> allowed = {"name", "description", "type", "body1", "body2"};
+        std::vector<std::string> required = {"name", "type", "body1", "body2"};
+        if (info) {
+          allowed.insert(allowed.end(), info->geometry.begin(), info->geometry.end());
+          allowed.insert(allowed.end(), info->optional.begin(), info->optional.end());
+          required.insert(required.end(), info->geometry.begin(), info->geometry.end());
+        } else {
+          for (const auto& t : JointTypes()) {
+            allowed.insert(allowed.end(), t.geometry.begin(), t.geometry.end());
+            allowed.insert(allowed.end(), t.optional.begin(), t.optional.end());
+          }
+        }
+        rd.CheckObject(jj, ptr, allowed, required, info ? std::string("a ") + info->name + " joint" : "a joint");
+        auto name = rd.Name(jj, ptr, "joint");
+        auto b1 = body_ref(jj, "body1", ptr);
+        auto b2 = body_ref(jj, "body2", ptr);
+        bool ok = name && b1 && b2 && info;
+        if (name) {
+          if (joint_index.count(*name)) {
+            rd.Error(ptr + "/name", "duplicate joint name '" + *name + "'", "give every joint a unique name");
+            ok = false;
+          }
+          joint_index.emplace(*name, -2);
+        }
+        if (b1 && b2 && *b1 == *b2) {
+          rd.Error(ptr + "/body2", "joint connects body '" + model.BodyName(*b1) + "' to itself",
+                   "a joint needs two different bodies (either may be ground)");
+          ok = false;
+        }
+        if (!info) continue;
+        Joint joint;
+        joint.type = info->type;
+        std::optional<Vec3> origin, axis, axis1, axis2, normal, p1, p2;
+        if (jj.contains("origin")) { origin = length_vec(jj, "origin", ptr); ok = ok && origin; }
+        if (jj.contains("axis")) { axis = rd.Vector(jj, "axis", ptr, true); ok = ok && axis; }
+        if (jj.contains("axis1")) { axis1 = rd.Vector(jj, "axis1", ptr, true); ok = ok && axis1; }
+        if (jj.contains("axis2")) { axis2 = rd.Vector(jj, "axis2", ptr, true); ok = ok && axis2; }
+        if (jj.contains("normal")) { normal = rd.Vector(jj, "normal", ptr, true); ok = ok && normal; }
+        if (jj.contains("point1")) { p1 = length_vec(jj, "point1", ptr); ok = ok && p1; }
+        if (jj.contains("point2")) { p2 = length_vec(jj, "point2", ptr); ok = ok && p2; }
+        for (const auto& key : info->geometry) if (!jj.contains(key)) ok = false;
+        if (info->type == JointType::Screw) {
+          auto pitch = rd.Number(jj, "pitch", ptr);
+          if (pitch && *pitch == 0) {
+            rd.Error(ptr + "/pitch", "screw pitch is zero", "use a revolute joint, or give the lead per revolution");
+            ok = false;
+          } else if (pitch) joint.pitch = *pitch * L;
+          else ok = false;
+        }
+        if (axis1 && axis2) {
+          const double c = axis1->normalized().dot(axis2->normalized());
+          if (std::abs(c) > 1e-6) {
+            rd.Error(ptr + "/axis2", "universal joint axes are not perpendicular (angle " +
+                                         std::to_string(std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI) + " deg)",
+                     "make axis2 perpendicular to axis1 (the cross axes of a Hooke joint are at 90 deg)");
+            ok = false;
+          }
+        }
+        if (info->type == JointType::Distance && p1 && p2) {
+          double len = (*p2 - *p1).norm();
+          if (jj.contains("length")) {
+            auto l = rd.Number(jj, "length", ptr);
+            if (!l) ok = false;
+            else if (!(*l > 0)) { rd.Error(ptr + "/length", "distance length must be positive", "give the link length"); ok = false; }
+            else len = *l * L;
+          }
+          if (ok && !(len > 0)) {
+            rd.Error(ptr + "/point2", "distance joint points coincide at the design pose and no length is given",
+                     "a distance link of zero length is singular; use a spherical joint");
+            ok = false;
+          }
+          joint.length = len;
+        }
+        if (!ok) continue;
+        joint.name = *name;
+        joint.body1 = *b1;
+        joint.body2 = *b2;
+        JointFrame global;
+        switch (joint.type) {
+          case JointType::Revolute: case JointType::Prismatic: case JointType::Screw: case JointType::Cylindrical:
+            global = MakeFrame(*origin, *axis);
+            break;
+          case JointType::Planar: global = MakeFrame(*origin, *normal); break;
+          case JointType::Universal: global = MakeFrame(*origin, *axis1, *axis2); break;
+          case JointType::Spherical: global.origin = *origin; break;
+          case JointType::Distance: break;
+        }
+        if (joint.type == JointType::Distance) {
+          joint.frame1.origin = local_point(joint.body1, *p1);
+          joint.frame2.origin = local_point(joint.body2, *p2);
+        } else {
+          auto [r1, A1] = pose(joint.body1);
+          auto [r2, A2] = pose(joint.body2);
+          joint.frame1 = ToLocal(global, r1, A1);
+          joint.frame2 = ToLocal(global, r2, A2);
+          if (joint.type == JointType::Universal) {
+            // body2 carries axis2 as its h (constraints.md §5, U row).
+            JointFrame g2 = MakeFrame(*origin, *axis2, *axis1);
+            joint.frame2 = ToLocal(g2, r2, A2);
+          }
+        }
+        joint_index[joint.name] = static_cast<int>(model.joints.size());
+        model.joints.push_back(joint);
+      }
+  }
+
+  // ---- drivers
+  std::set<std::string> driver_names;
+  if (doc.contains("drivers")) {
+    const json& drivers = doc.at("drivers");
+    if (!drivers.is_array()) rd.Error("/drivers", "'drivers' must be an array of driver objects, not " + TypeName(drivers));
+    else
+      for (size_t k = 0; k < drivers.size(); ++k) {
+        const std::string ptr = "/drivers/" + std::to_string(k);
+        const json& d = drivers[k];
+        if (!d.is_object()) { rd.Error(ptr, "a driver must be a JSON object, not " + TypeName(d)); continue; }
+        auto type_s = rd.String(d, "type", ptr);
+        std::vector<std::string> allowed = {"name", "description", "type", "function"};
+        std::vector<std::string> required = {"name", "type", "function"};
+        const bool by_body = d.contains("body") || d.contains("axis");
+        if (type_s && *type_s == "rotation" && by_body) {
+          allowed.insert(allowed.end(), {"body", "axis"});
+          required.insert(required.end(), {"body", "axis"});
+        } else if (type_s && (*type_s == "rotation" || *type_s == "translation")) {
+          allowed.push_back("joint");
+          required.push_back("joint");
+        } else if (type_s && *type_s == "distance") {
+          allowed.insert(allowed.end(), {"body1", "point1", "body2", "point2"});
+          required.insert(required.end(), {"body1", "point1", "body2", "point2"});
+        } else {
+          if (type_s) {
+            const std::string g = DidYouMean(*type_s, {"rotation", "translation", "distance"});
+            rd.Error(ptr + "/type", "unknown driver type '" + Shorten(*type_s) + "'",
+                     (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: rotation, translation, distance");
+          }
+          allowed.insert(allowed.end(), {"joint", "body", "axis", "body1", "point1", "body2", "point2"});
+        }
+        rd.CheckObject(d, ptr, allowed, required, type_s ? "a " + *type_s + " driver" : "a driver");
+        auto name = rd.Name(d, ptr, "driver");
+        bool ok = name.has_value() && type_s.has_value();
+        if (name) {
+          if (driver_names.count(*name)) {
+            rd.Error(ptr + "/name", "duplicate driver name '" + *name + "'", "give every driver a unique name");
+            ok = false;
+          }
+          driver_names.insert(*name);
+        }
+        Driver drv;
+        double scale = L;
+        if (type_s && *type_s == "rotation" && by_body) {
+          drv.kind = DriverKind::BodyRotation;
+          scale = ANG;
+          auto b = body_ref(d, "body", ptr);
+          auto axis = rd.Vector(d, "axis", ptr, true);
+          if (b && *b == kGround) {
+            rd.Error(ptr + "/body", "ground cannot be driven", "name a moving body");
+            ok = false;
+          } else if (b && axis) {
+            // GRRD with ground as body i (constraints.md §3.6 seed note).
+            const JointFrame global = MakeFrame(Vec3::Zero(), *axis);
+            drv.body1 = kGround;
+            drv.body2 = *b;
+            drv.frame1 = global;
+            auto [r, A] = pose(*b);
+            drv.frame2 = ToLocal(global, r, A);
+          } else ok = false;
+        } else if (type_s && (*type_s == "rotation" || *type_s == "translation")) {
+          const bool rot = *type_s == "rotation";
+          drv.kind = rot ? DriverKind::JointRotation : DriverKind::JointTranslation;
+          scale = rot ? ANG : L;
+          auto jn = rd.String(d, "joint", ptr);
+          if (jn) {
+            const auto it = joint_index.find(*jn);
+            if (it == joint_index.end()) {
+              std::vector<std::string> names;
+              for (const auto& kv : joint_index) names.push_back(kv.first);
+              const std::string g = DidYouMean(*jn, names);
+              rd.Error(ptr + "/joint", "unknown joint '" + Shorten(*jn) + "'",
+                       (g.empty() ? "" : "did you mean '" + g + "'? ") + "valid joints: " + Join(names));
+              ok = false;
+            } else if (it->second < 0) {
+              ok = false;  // that joint already has an error
+            } else {
+              const Joint& j = model.joints[it->second];
+              const bool can = rot ? (j.type == JointType::Revolute || j.type == JointType::Cylindrical ||
+                                      j.type == JointType::Screw)
+                                   : (j.type == JointType::Prismatic || j.type == JointType::Cylindrical ||
+                                      j.type == JointType::Screw);
+              if (!can) {
+                rd.Error(ptr + "/joint", std::string("a ") + *type_s + " driver cannot drive " + JointTypeName(j.type) +
+                                             " joint '" + j.name + "'",
+                         rot ? "rotation drivers act on revolute, cylindrical or screw joints"
+                             : "translation drivers act on prismatic, cylindrical or screw joints");
+                ok = false;
+              } else {
+                drv.joint = it->second;
+                drv.body1 = j.body1;
+                drv.body2 = j.body2;
+                drv.frame1 = j.frame1;
+                drv.frame2 = j.frame2;
+              }
+            }
+          } else ok = false;
+        } else if (type_s && *type_s == "distance") {
+          drv.kind = DriverKind::Distance;
+          auto b1 = body_ref(d, "body1", ptr);
+          auto b2 = body_ref(d, "body2", ptr);
+          auto p1 = length_vec(d, "point1", ptr);
+          auto p2 = length_vec(d, "point2", ptr);
+          if (b1 && b2 && *b1 == *b2) {
+            rd.Error(ptr + "/body2", "distance driver between body '" + model.BodyName(*b1) + "' and itself",
+                     "name two different bodies");
+            ok = false;
+          } else if (b1 && b2 && p1 && p2) {
+            drv.body1 = *b1;
+            drv.body2 = *b2;
+            drv.point1 = local_point(*b1, *p1);
+            drv.point2 = local_point(*b2, *p2);
+          } else ok = false;
+        } else {
+          ok = false;
+        }
+        if (d.contains("function")) {
+          auto f = ReadFunction(rd, d.at("function"), ptr + "/function", scale);
+          if (f) drv.function = *f; else ok = false;
+        } else ok = false;
+        if (!ok) continue;
+        drv.name = *name;
+        model.drivers.push_back(drv);
+      }
+  }
+
+  // ---- analysis
+  if (doc.contains("analysis")) {
+    const json& a = doc.at("analysis");
+    if (rd.CheckObject(a, "/analysis", {"start", "end", "steps"}, {"start", "end", "steps"}, "'analysis'")) {
+      auto s = rd.Number(a, "start", "/analysis");
+      auto e = rd.Number(a, "end", "/analysis");
+      auto n = rd.Integer(a, "steps", "/analysis");
+      if (s && e && !(*e > *s)) rd.Error("/analysis/end", "'end' must be greater than 'start'", "set end > start");
+      if (n && *n < 1) rd.Error("/analysis/steps", "'steps' must be at least 1", "give the number of intervals (rows = steps + 1)");
+      if (n && *n > 10000000) rd.Error("/analysis/steps", "'steps' is larger than 10,000,000", "use fewer steps");
+      if (s && e && n && *e > *s && *n >= 1 && *n <= 10000000) model.analysis = Analysis{*s, *e, *n};
+    }
+  }
+
+  // ---- outputs
+  std::set<std::string> output_names;
+  if (doc.contains("outputs")) {
+    const json& outs = doc.at("outputs");
+    if (!outs.is_array()) rd.Error("/outputs", "'outputs' must be an array, not " + TypeName(outs));
+    else
+      for (size_t k = 0; k < outs.size(); ++k) {
+        const std::string ptr = "/outputs/" + std::to_string(k);
+        const json& o = outs[k];
+        if (!o.is_object()) { rd.Error(ptr, "an output must be a JSON object, not " + TypeName(o)); continue; }
+        auto type_s = rd.String(o, "type", ptr);
+        Output out;
+        std::vector<std::string> allowed = {"name", "description", "type"};
+        std::vector<std::string> required = {"name", "type"};
+        if (type_s && *type_s == "point") {
+          out.kind = OutputKind::Point;
+          allowed.insert(allowed.end(), {"body", "point"});
+          required.insert(required.end(), {"body", "point"});
+        } else if (type_s && *type_s == "joint") {
+          out.kind = OutputKind::JointCoordinate;
+          allowed.push_back("joint");
+          required.push_back("joint");
+        } else if (type_s && *type_s == "distance") {
+          out.kind = OutputKind::Distance;
+          allowed.insert(allowed.end(), {"body1", "point1", "body2", "point2"});
+          required.insert(required.end(), {"body1", "point1", "body2", "point2"});
+        } else {
+          if (type_s) {
+            const std::string g = DidYouMean(*type_s, {"point", "joint", "distance"});
+            rd.Error(ptr + "/type", "unknown output type '" + Shorten(*type_s) + "'",
+                     (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: point, joint, distance");
+          }
+          allowed.insert(allowed.end(), {"body", "point", "joint", "body1", "point1", "body2", "point2"});
+        }
+        rd.CheckObject(o, ptr, allowed, required, "an output");
+        auto name = rd.Name(o, ptr, "output");
+        bool ok = name && type_s;
+        if (name) {
+          if (output_names.count(*name)) {
+            rd.Error(ptr + "/name", "duplicate output name '" + *name + "'", "give every output a unique name");
+            ok = false;
+          } else if (body_index.count(*name)) {
+            rd.Error(ptr + "/name", "output name '" + *name + "' is also a body name", "table columns would clash; rename it");
+            ok = false;
+          }
+          output_names.insert(*name);
+        }
+        if (!ok) continue;
+        if (out.kind == OutputKind::Point) {
+          auto b = body_ref(o, "body", ptr);
+          auto p = length_vec(o, "point", ptr);
+          if (!b || !p) continue;
+          out.body1 = *b;
+          out.point1 = local_point(*b, *p);
+        } else if (out.kind == OutputKind::JointCoordinate) {
+          auto jn = rd.String(o, "joint", ptr);
+          if (!jn) continue;
+          const auto it = joint_index.find(*jn);
+          if (it == joint_index.end()) {
+            std::vector<std::string> names;
+            for (const auto& kv : joint_index) names.push_back(kv.first);
+            rd.Error(ptr + "/joint", "unknown joint '" + Shorten(*jn) + "'", "valid joints: " + Join(names));
+            continue;
+          }
+          if (it->second < 0) continue;
+          const Joint& j = model.joints[it->second];
+          if (j.type != JointType::Revolute && j.type != JointType::Prismatic && j.type != JointType::Cylindrical &&
+              j.type != JointType::Screw) {
+            rd.Error(ptr + "/joint", std::string("joint outputs exist for revolute, prismatic, cylindrical and screw joints; '") +
+                                         j.name + "' is " + JointTypeName(j.type),
+                     "use a point or distance output instead");
+            continue;
+          }
+          out.joint = it->second;
+          out.body1 = j.body1;
+          out.body2 = j.body2;
+        } else {
+          auto b1 = body_ref(o, "body1", ptr);
+          auto b2 = body_ref(o, "body2", ptr);
+          auto p1 = length_vec(o, "point1", ptr);
+          auto p2 = length_vec(o, "point2", ptr);
+          if (!b1 || !b2 || !p1 || !p2) continue;
+          out.body1 = *b1;
+          out.body2 = *b2;
+          out.point1 = local_point(*b1, *p1);
+          out.point2 = local_point(*b2, *p2);
+        }
+        out.name = *name;
+        model.outputs.push_back(out);
+      }
+  }
+
+  // ---- expect
+  if (doc.contains("expect")) {
+    const json& e = doc.at("expect");
+    if (rd.CheckObject(e, "/expect", {"grubler", "mobility", "redundant", "idle", "driven"}, {}, "'expect'")) {
+      model.expect.grubler = rd.Integer(e, "grubler", "/expect");
+      model.expect.mobility = rd.Integer(e, "mobility", "/expect");
+      model.expect.redundant = rd.Integer(e, "redundant", "/expect");
+      model.expect.idle = rd.Integer(e, "idle", "/expect");
+      if (auto s = rd.String(e, "driven", "/expect")) {
+        if (*s == "full" || *s == "under" || *s == "over") model.expect.driven = *s;
+        else rd.Error("/expect/driven", "unknown driving status '" + Shorten(*s) + "'", "use \"full\", \"under\" or \"over\"");
+      }
+    }
+  }
+
+  if (!result.errors.empty()) return result;
+  model.characteristic_length = CharacteristicLength(model);
+  result.model = std::move(model);
+  return result;
+}
+
+LoadResult LoadMechanismFile(const std::string& path) {
+  LoadResult result;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    result.errors.push_back({"", "cannot open '" + path + "'", "check the path and permissions"});
+    return result;
+  }
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) {
+    result.errors.push_back({"", "cannot read '" + path + "' (is it a directory?)", "give a mechanism JSON file"});
+    return result;
+  }
+  if (static_cast<std::size_t>(size) > kMaxFileBytes) {
+    result.errors.push_back({"", "file is larger than 256 MiB", "a mechanism file is a few kilobytes; check the path"});
+    return result;
+  }
+  in.seekg(0);
+  std::string text(static_cast<size_t>(size), '\0');
+  in.read(text.data(), size);
+  if (!in) {
+    result.errors.push_back({"", "cannot read '" + path + "'", "check the path and permissions"});
+    return result;
+  }
+  return LoadMechanismText(text, path);
+}
+
+}  // namespace mechkin

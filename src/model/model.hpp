@@ -1,0 +1,98 @@
+// The immutable mechanism model, compiled once from a format-v1 file.
+//
+// Frames: "global" is ground. Body k has origin r_k and Euler parameters p_k at
+// the design configuration. Primed (local) quantities are body-frame components;
+// for ground, local == global. Everything is SI (m, rad, s).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "math/rotation.hpp"
+#include "model/time_function.hpp"
+#include "model/units.hpp"
+
+namespace mechkin {
+
+/// Index of a moving body in Model::bodies, or kGround.
+using BodyIndex = int;
+constexpr BodyIndex kGround = -1;
+
+struct Body {
+  std::string name;
+  Vec3 position;  // r at the design configuration (global, m)
+  Vec4 euler;     // p at the design configuration (unit, scalar first)
+};
+
+enum class JointType { Revolute, Prismatic, Screw, Cylindrical, Universal, Spherical, Planar, Distance };
+
+/// Joint definition frame fixed in one body (constraints.md §4): origin s' and
+/// orthonormal axes f', g', h' in that body's frame.
+struct JointFrame {
+  Vec3 origin = Vec3::Zero();
+  Vec3 f = Vec3::UnitX(), g = Vec3::UnitY(), h = Vec3::UnitZ();
+};
+
+struct Joint {
+  std::string name;
+  JointType type;
+  BodyIndex body1 = kGround, body2 = kGround;
+  JointFrame frame1, frame2;  // local frames on body1 and body2 (coincide globally at design)
+  double pitch = 0;           // screw: metres per revolution (right-handed positive)
+  double length = 0;          // distance: link length (m)
+};
+
+enum class DriverKind { JointRotation, BodyRotation, JointTranslation, Distance };
+
+struct Driver {
+  std::string name;
+  DriverKind kind;
+  int joint = -1;                    // JointRotation / JointTranslation
+  BodyIndex body1 = kGround, body2 = kGround;
+  JointFrame frame1, frame2;         // frames of the driven coordinate (joint or body/ground)
+  Vec3 point1 = Vec3::Zero(), point2 = Vec3::Zero();  // Distance: local points
+  TimeFunction function;             // SI value: rad or m
+};
+
+enum class OutputKind { Point, JointCoordinate, Distance };
+
+struct Output {
+  std::string name;
+  OutputKind kind;
+  BodyIndex body1 = kGround, body2 = kGround;
+  Vec3 point1 = Vec3::Zero(), point2 = Vec3::Zero();  // local points
+  int joint = -1;
+};
+
+struct Analysis {
+  double start = 0, end = 1;
+  int steps = 100;
+};
+
+struct Expect {
+  std::optional<int> grubler, mobility, redundant, idle;
+  std::optional<std::string> driven;  // "full", "under", "over"
+};
+
+struct Model {
+  std::string name, description, source;
+  Units units;
+  std::vector<Body> bodies;  // moving bodies only
+  std::vector<Joint> joints;
+  std::vector<Driver> drivers;
+  std::vector<Output> outputs;
+  std::optional<Analysis> analysis;
+  Expect expect;
+  double characteristic_length = 1.0;  // m; scale for every length tolerance
+
+  int num_bodies() const { return static_cast<int>(bodies.size()); }
+  std::string BodyName(BodyIndex b) const { return b == kGround ? "ground" : bodies[b].name; }
+};
+
+/// Number of equations a joint removes (format-v1 joint table).
+int EquationsRemoved(JointType type);
+/// Lower-case name as in the file ("revolute", ...).
+const char* JointTypeName(JointType type);
+
+}  // namespace mechkin

@@ -1,0 +1,74 @@
+// Driver functions of time (format-v1 "function"): an expression in t or a
+// table. Both return exact derivatives to the 4th order as a Jet.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "math/taylor.hpp"
+
+namespace mechkin {
+
+/// Bad expression text; `column` is 1-based in the expression string.
+struct ExpressionError : std::runtime_error {
+  ExpressionError(const std::string& what, int column)
+      : std::runtime_error(what), column(column) {}
+  int column;
+};
+
+/// A parsed expression in `t`. Grammar (format-v1): + - * / ^ (right-assoc.,
+/// binds tighter than unary minus), parentheses, numbers, `t`, `pi`, and
+/// sin cos tan asin acos atan atan2 exp log sqrt.
+class Expression {
+ public:
+  /// Throws ExpressionError naming the column of the bad token.
+  static Expression Parse(const std::string& text);
+  /// Value and derivatives at t. Throws JetDomainError outside the domain.
+  Jet Eval(double t) const;
+  const std::string& text() const { return text_; }
+
+ private:
+  enum class Op { Const, Time, Neg, Add, Sub, Mul, Div, Pow, Sin, Cos, Tan, Asin, Acos, Atan,
+                  Atan2, Exp, Log, Sqrt };
+  struct Node { Op op; double value = 0; int a = -1, b = -1; };
+  Jet EvalNode(int index, const Jet& t) const;
+  friend class ExpressionParser;
+  std::string text_;
+  std::vector<Node> nodes_;
+  int root_ = -1;
+};
+
+/// Interpolating quintic spline through (t_k, v_k), C4 everywhere, with the
+/// "natural" end conditions v''' = v'''' = 0 (the minimiser of ∫(v''')²).
+class TableSpline {
+ public:
+  /// Requires ≥ 2 points with strictly increasing, finite t. Throws std::invalid_argument.
+  TableSpline(std::vector<double> t, std::vector<double> v);
+  /// Throws std::out_of_range outside [t_front, t_back].
+  Jet Eval(double t) const;
+  double t_min() const { return t_.front(); }
+  double t_max() const { return t_.back(); }
+
+ private:
+  std::vector<double> t_, v_, d_, m_;  // knots, values, first and second derivatives
+};
+
+/// A driver function: one of the two forms, scaled to SI by `scale`.
+class TimeFunction {
+ public:
+  TimeFunction() = default;
+  TimeFunction(std::shared_ptr<const Expression> e, double scale) : expr_(std::move(e)), scale_(scale) {}
+  TimeFunction(std::shared_ptr<const TableSpline> s, double scale) : table_(std::move(s)), scale_(scale) {}
+  /// Value and derivatives (SI) at t.
+  Jet Eval(double t) const;
+  bool is_table() const { return table_ != nullptr; }
+  std::string Describe() const;
+
+ private:
+  std::shared_ptr<const Expression> expr_;
+  std::shared_ptr<const TableSpline> table_;
+  double scale_ = 1.0;
+};
+
+}  // namespace mechkin

@@ -1,0 +1,51 @@
+// Position-level solves Φ(q, t) = 0 on the configuration manifold.
+//
+// Updates are (δr, δπ') per body in the ω' layout; Euler parameters move by the
+// body-frame retraction of §1.5 and stay unit exactly, so no normalization
+// equation is needed. Success is judged only on the scaled residual
+// max_k |Φ_k| / L^power_k ≤ tolerance (L = characteristic length), never on a
+// solver's own flag.
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "constraints/system.hpp"
+
+namespace mechkin {
+
+struct SolveOptions {
+  double tolerance = 1e-10;  // on the scaled residual (relative to the mechanism size)
+  int max_iterations = 50;
+};
+
+struct SolveSummary {
+  bool success = false;
+  int iterations = 0;
+  double residual = -1;  // scaled max-abs residual at the end
+  std::string message;
+};
+
+/// Row weights 1/L^power for the given rows of the system.
+Eigen::VectorXd RowScales(const ConstraintSystem& sys, const std::vector<int>& rows);
+/// max_k |Φ_k| · scale_k over `rows` (phi is the full Φ).
+double ScaledResidual(const Eigen::VectorXd& phi, const std::vector<int>& rows, const Eigen::VectorXd& scales);
+/// Moves every body by dq (ω' layout, 6 per body).
+void ApplyStep(const Eigen::VectorXd& dq, SystemState* s);
+/// All rows 0..m−1.
+std::vector<int> AllRows(const ConstraintSystem& sys);
+
+/// Damped minimum-norm Gauss–Newton on the selected rows (dense; any shape of
+/// system). Used to assemble rough design poses and by the mobility analysis.
+SolveSummary AssembleMinNorm(const ConstraintSystem& sys, const std::vector<int>& rows, const SolveOptions& options,
+                             SystemState* s);
+
+/// Rows chosen greedily in order so that the kept rows are independent:
+/// scaled Jacobian, relative threshold `rel_tol` on the new direction's norm.
+std::vector<int> IndependentRows(const Eigen::MatrixXd& scaled_J, double rel_tol, std::vector<int>* dependent);
+
+/// Jacobian (ω') scaled to be dimensionless: rows by 1/L^power, r columns by L.
+Eigen::MatrixXd ScaledJacobian(const ConstraintSystem& sys, const SystemState& s);
+
+}  // namespace mechkin
