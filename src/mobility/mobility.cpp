@@ -186,7 +186,7 @@ MobilityReport CalcMobility(const Model& model) {
       std::string names;
       for (int b : g) f.body += (f.body.empty() ? "" : "+") + model.bodies[b].name;
       f.description = (g.size() == 1 ? "body `" + f.body + "`" : "bodies `" + f.body + "` together") +
-                      (w.norm() > 0 ? " spin about their own axis " + VecStr(f.axis) : " slide") +
+                      (w.norm() > 0 ? (g.size() == 1 ? " spins about its own axis " : " spin about their common axis ") + VecStr(f.axis) : " slide") +
                       " without moving anything else; model " +
                       (g.size() == 1 ? "the link as a `distance` joint instead of a body"
                                      : "the leg with fewer bodies or lock the spin") +

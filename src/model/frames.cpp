@@ -43,13 +43,26 @@ double CharacteristicLength(const Model& model) {
     pts.push_back(global(j.body1, j.frame1.origin));
     pts.push_back(global(j.body2, j.frame2.origin));
   }
+  for (const auto& d : model.drivers)
+    if (d.kind == DriverKind::Distance) {
+      pts.push_back(global(d.body1, d.point1));
+      pts.push_back(global(d.body2, d.point2));
+    }
+  for (const auto& o : model.outputs)
+    if (o.kind != OutputKind::JointCoordinate) pts.push_back(global(o.body1, o.point1));
   if (pts.empty()) return model.units.length_to_si;
   Vec3 c = Vec3::Zero();
   for (const auto& p : pts) c += p;
   c /= static_cast<double>(pts.size());
-  double r = 0;
-  for (const auto& p : pts) r = std::max(r, (p - c).norm());
-  return r > 0 ? r : model.units.length_to_si;
+  double r = 0, far = 0;
+  for (const auto& p : pts) {
+    r = std::max(r, (p - c).norm());
+    far = std::max(far, p.norm());
+  }
+  // When every point coincides, the spread is round-off: fall back to the
+  // distance from the global origin, or to one file length unit.
+  if (r > 1e-6 * far && r > 0) return r;
+  return far > 0 ? far : model.units.length_to_si;
 }
 
 }  // namespace mechkin
