@@ -400,6 +400,22 @@ LoadResult LoadMechanismText(const std::string& text, const std::string& source_
     rd.Error("", "JSON syntax error at line " + std::to_string(line) + ", column " + std::to_string(col) + ": " + what,
              text.empty() ? "the file is empty; start from a file in mechanisms/" : "fix the JSON syntax");
     return result;
+  } catch (const json::out_of_range& e) {
+    // nlohmann reports overflowing numbers (1e999) without a position: find the token.
+    std::string what = e.what(), where;
+    const auto q1 = what.find('\''), q2 = what.rfind('\'');
+    if (q1 != std::string::npos && q2 > q1) {
+      const std::string token = what.substr(q1 + 1, q2 - q1 - 1);
+      const size_t at = text.find(token);
+      if (at != std::string::npos) {
+        size_t line = 1, col = 1;
+        for (size_t i = 0; i < at; ++i) { if (text[i] == '\n') { ++line; col = 1; } else { ++col; } }
+        where = " at line " + std::to_string(line) + ", column " + std::to_string(col);
+      }
+      what = "number '" + Shorten(token) + "' is too large for a double" + where;
+    }
+    rd.Error("", what, "use a finite value (|x| < 1.8e308)");
+    return result;
   } catch (const std::exception& e) {
     rd.Error("", std::string("cannot parse the file as JSON: ") + e.what());
     return result;
