@@ -157,7 +157,10 @@ Errors CheckCase(const Case& cs) {
   JacobianBlocks J;
   c.CalcJacobian(in, &J);
   const double h = 1e-6;
-  const double jscale = std::max({J.r_i.norm(), J.r_j.norm(), J.pi_i.norm(), J.pi_j.norm(), 1e-12});
+  // Scale: the blocks, or |Φ| itself where the gradient is small (near-parallel DOT_1),
+  // since differences of Φ are only accurate to eps·|Φ|/h.
+  double jscale = std::max({J.r_i.norm(), J.r_j.norm(), J.pi_i.norm(), J.pi_j.norm(), 1e-12});
+  for (int r = 0; r < m; ++r) jscale = std::max(jscale, std::abs(phi[r]));
   for (int side = 0; side < 2; ++side) {
     if ((side == 0 ? cs.bi : cs.bj).ground) continue;
     for (int col = 0; col < 6; ++col) {
