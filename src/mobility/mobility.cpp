@@ -28,7 +28,9 @@ RankInfo CalcRank(const Eigen::MatrixXd& J) {
     info.null_basis = Eigen::MatrixXd::Identity(n, n);
     return info;
   }
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
+  // BDCSVD: divide and conquer, fast for the few-hundred-column Jacobians of larger
+  // mechanisms; it falls back to Jacobi sweeps for small blocks.
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
   const Eigen::VectorXd& sv = svd.singularValues();
   const double smax = sv.size() ? sv[0] : 0;
   for (int k = 0; k < sv.size(); ++k) {
@@ -157,7 +159,8 @@ MobilityReport CalcMobility(const Model& model) {
       T.block(6 * b, 3, 3, 3) = Mat3::Identity();
       T.block(6 * b + 3, 0, 3, 3) = A.transpose();
     }
-    Eigen::MatrixXd S = Jf * T;
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(Jf.rows(), 6);
+    for (int b : g) S += Jf.middleCols(6 * b, 6) * T.middleRows(6 * b, 6);
     // Output points on the group's bodies must not move.
     for (const auto& o : model.outputs)
       for (BodyIndex ob : {o.body1, o.body2})
@@ -174,12 +177,13 @@ MobilityReport CalcMobility(const Model& model) {
     const RankInfo gi = CalcRank(S);
     for (int c = 0; c < gi.null_basis.cols(); ++c) {
       const Eigen::VectorXd motion = T * gi.null_basis.col(c);
-      // New direction only if independent of the idle motions found so far.
-      Eigen::MatrixXd M(6 * n, idle_motions.size() + 1);
-      for (size_t k = 0; k < idle_motions.size(); ++k) M.col(k) = idle_motions[k];
-      M.col(idle_motions.size()) = motion;
-      if (CalcRank(M.transpose()).rank <= static_cast<int>(idle_motions.size())) continue;
-      idle_motions.push_back(motion);
+      // New direction only if independent of the idle motions found so far
+      // (idle_motions is kept orthonormal).
+      Eigen::VectorXd v = motion;
+      for (int pass = 0; pass < 2; ++pass)
+        for (const auto& q : idle_motions) v -= q.dot(v) * q;
+      if (v.norm() <= 1e-6 * motion.norm()) continue;
+      idle_motions.push_back(v.normalized());
       IdleFreedom f;
       const Vec3 w = gi.null_basis.col(c).head<3>();
       f.axis = w.norm() > 0 ? Vec3(w.normalized()) : Vec3::Zero();
