@@ -104,3 +104,21 @@ inline Q4 QuatProduct(const Q4& a, const Q4& b) {
 }
 
 }  // namespace mechkin::testing
+
+namespace mechkin::testing {
+// atan through its derivative u'/(1 + u²).
+inline TJet Atan(const TJet& u) {
+  const TJet d = u.Dt() / (TJet(1.0) + u * u);
+  TJet r(std::atan(u.c[0]));
+  for (int k = 1; k <= kJ; ++k) r.c[k] = d.c[k - 1] / k;
+  return r;
+}
+// Angle of (x, y): value from atan2, derivatives from the better-conditioned atan form.
+inline TJet Angle(const TJet& y, const TJet& x) {
+  TJet r = std::abs(x.c[0]) >= std::abs(y.c[0]) ? Atan(y / x) : -Atan(x / y);
+  r.c[0] = std::atan2(y.c[0], x.c[0]);
+  return r;
+}
+inline TJet Sin(const TJet& a) { TJet s, c; SinCos(a, &s, &c); return s; }
+inline TJet Cos(const TJet& a) { TJet s, c; SinCos(a, &s, &c); return c; }
+}  // namespace mechkin::testing

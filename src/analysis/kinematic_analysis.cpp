@@ -1,0 +1,284 @@
+#include "analysis/kinematic_analysis.hpp"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "mobility/mobility.hpp"
+#include "solvers/ceres_position.hpp"
+#include "solvers/newton.hpp"
+
+namespace mechkin {
+
+bool AnalysisOptions::IsValid(std::string* error) const {
+  if (order < 0 || order > 4) { *error = "order must be 0..4"; return false; }
+  if (!(tolerance > 0 && tolerance < 1e-2)) { *error = "tolerance must be in (0, 1e-2)"; return false; }
+  if (max_iterations < 1) { *error = "max_iterations must be >= 1"; return false; }
+  if (predictor_order < 0 || predictor_order > 3) { *error = "predictor order must be 0..3"; return false; }
+  return true;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The value each driver has at the design pose: angles and slides are 0 there
+// (format-v1), a distance driver gives the design distance itself.
+double DesignDriverValue(const Model& m, const Driver& d) {
+  if (d.kind != DriverKind::Distance) return 0;
+  auto global = [&](BodyIndex b, const Vec3& s) -> Vec3 {
+    return b == kGround ? s : Vec3(m.bodies[b].position + CalcA(m.bodies[b].euler) * s);
+  };
+  return (global(d.body2, d.point2) - global(d.body1, d.point1)).norm();
+}
+
+// Points the multi-turn angle of rotation drivers at their target f(t).
+void AimRotationDrivers(const ConstraintSystem& sys, SystemState* s) {
+  for (size_t e = 0; e < sys.entries().size(); ++e) {
+    const ConstraintEntry& en = sys.entries()[e];
+    if (en.from_driver && en.constraint->HasAngle()) s->angle_ref[e] = s->driver_values[en.source].c[0];
+  }
+}
+
+// Everything the step loop reuses: no allocation per step.
+struct Workspace {
+  Eigen::VectorXd rhs_full, rhs, x, phi;
+  std::vector<std::array<Vec4, 5>> pd;  // p-version Euler parameter derivatives per body
+};
+
+std::string Describe(const ConstraintSystem& sys, const Eigen::VectorXd& phi, const std::vector<int>& rows,
+                     const Eigen::VectorXd& scales, int count) {
+  std::vector<std::pair<double, int>> r;
+  for (size_t k = 0; k < rows.size(); ++k) r.emplace_back(std::abs(phi[rows[k]]) * scales[k], rows[k]);
+  std::sort(r.rbegin(), r.rend());
+  std::ostringstream o;
+  for (int k = 0; k < count && k < static_cast<int>(r.size()); ++k)
+    o << "\n    " << sys.DescribeRow(r[k].second) << ": scaled residual " << r[k].first;
+  return o.str();
+}
+
+double SmallestSingularValue(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& rows) {
+  if (6 * sys.num_bodies() > 1200) return std::nan("");
+  const Eigen::MatrixXd J = ScaledJacobian(sys, s);
+  Eigen::MatrixXd Js(rows.size(), J.cols());
+  for (size_t k = 0; k < rows.size(); ++k) Js.row(k) = J.row(rows[k]);
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(Js);
+  return svd.singularValues().size() ? svd.singularValues().tail(1)[0] : 0.0;
+}
+
+}  // namespace
+
+AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& options, const StepCallback& on_step) {
+  AnalysisReport rep;
+  std::string why;
+  if (!options.IsValid(&why)) { rep.message = why; return rep; }
+  if (!model.analysis) { rep.message = "the file has no 'analysis' block: add {\"start\": 0, \"end\": 1, \"steps\": 100}"; return rep; }
+  const ConstraintSystem sys(model, true);
+  const int n = sys.num_bodies();
+  SystemState s(sys);
+  SolveOptions solve;
+  solve.tolerance = options.tolerance;
+  solve.max_iterations = options.max_iterations;
+
+  // 1. Assemble the design pose with every driver held at its design value.
+  for (size_t d = 0; d < model.drivers.size(); ++d) s.driver_values[d] = Jet::Constant(DesignDriverValue(model, model.drivers[d]));
+  AimRotationDrivers(sys, &s);
+  const bool dense_ok = 6 * n <= 1200;
+  std::vector<int> all = AllRows(sys);
+  if (dense_ok) {
+    SolveOptions rough = solve;
+    rough.max_iterations = 100;
+    const SolveSummary a = AssembleMinNorm(sys, all, rough, &s);
+    rep.assembly_iterations = a.iterations;
+    if (!a.success) {
+      Eigen::VectorXd phi;
+      CalcPhi(sys, s, &phi);
+      rep.message = "the design pose cannot be assembled (scaled residual " + std::to_string(a.residual) +
+                    "); the equations that cannot close:" + Describe(sys, phi, all, RowScales(sys, all), 3) +
+                    "\n  Check the lengths and joint positions in the file.";
+      return rep;
+    }
+  }
+
+  // 2. Redundant equations: keep an independent subset (greedy in file order, joints first).
+  std::vector<int> active = all, set_aside;
+  if (dense_ok) active = IndependentRows(ScaledJacobian(sys, s), 1e-7, &set_aside);
+  std::vector<std::string> conflicting;
+  for (int row : set_aside) {
+    if (row >= sys.num_joint_rows()) conflicting.push_back(sys.SourceName(row));
+    else rep.set_aside.push_back(sys.DescribeRow(row));
+  }
+  if (!conflicting.empty()) {
+    rep.message = "over-driven: driver(s) ";
+    for (size_t k = 0; k < conflicting.size(); ++k) rep.message += (k ? ", `" : "`") + conflicting[k] + "`";
+    rep.message += " conflict with the joints or other drivers. Remove or change them (mechkin check names the freedoms).";
+    return rep;
+  }
+  if (static_cast<int>(active.size()) != 6 * n) {
+    const MobilityReport mob = CalcMobility(model);
+    rep.message = "under-driven: " + std::to_string(6 * n - static_cast<int>(active.size())) +
+                  " freedom(s) are not driven";
+    for (const auto& f : mob.remaining_freedoms) rep.message += "\n    " + f;
+    for (const auto& f : mob.idle) rep.message += "\n    idle: " + f.description;
+    rep.message += "\n  Add drivers, or remove the idle freedoms (see mechkin check).";
+    return rep;
+  }
+  NewtonSolver newton(sys, active);
+  std::unique_ptr<SparseJacobian> jac_p;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_p;
+  if (options.formulation == Formulation::P && options.order > 0) {
+    jac_p = std::make_unique<SparseJacobian>(sys, Formulation::P, active);
+    lu_p.analyzePattern(jac_p->matrix());
+  }
+  const Eigen::VectorXd aside_scales = RowScales(sys, set_aside);
+  Workspace ws;
+  ws.rhs.resize(active.size() + (jac_p ? n : 0));
+  ws.pd.resize(n);
+
+  // 3. Continue from the design driver values to those at `start`, in small
+  //    increments, so that the branch connected to the design pose is kept.
+  const Analysis& an = *model.analysis;
+  {
+    EvalDriverFunctions(model, an.start, &s);
+    std::vector<Jet> target = s.driver_values;
+    double worst = 0;
+    for (size_t d = 0; d < model.drivers.size(); ++d) {
+      const double delta = std::abs(target[d].c[0] - DesignDriverValue(model, model.drivers[d]));
+      const double limit = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation
+                               ? 10 * M_PI / 180 : 0.05 * model.characteristic_length;
+      worst = std::max(worst, delta / limit);
+    }
+    const int substeps = std::max(1, static_cast<int>(std::ceil(worst)));
+    for (int k = 1; k <= substeps; ++k) {
+      const double lambda = static_cast<double>(k) / substeps;
+      for (size_t d = 0; d < model.drivers.size(); ++d) {
+        const double v0 = DesignDriverValue(model, model.drivers[d]);
+        s.driver_values[d] = Jet::Constant(v0 + lambda * (target[d].c[0] - v0));
+      }
+      AimRotationDrivers(sys, &s);
+      SolveOptions o = solve;
+      o.max_iterations = 50;
+      const SolveSummary r = newton.Solve(o, &s);
+      rep.assembly_iterations += r.iterations;
+      if (!r.success) {
+        Eigen::VectorXd phi;
+        CalcPhi(sys, s, &phi);
+        rep.message = "cannot reach the drivers' values at t = start from the design pose (" + r.message +
+                      "); largest residuals:" + Describe(sys, phi, active, newton.scales(), 3);
+        return rep;
+      }
+      UpdateAngleReferences(sys, &s);
+    }
+  }
+
+  // 4. The time steps.
+  const double h = (an.end - an.start) / an.steps;
+  const int order = options.order, pred = std::min(options.predictor_order, order);
+  for (int step = 0; step <= an.steps; ++step) {
+    const double t = an.start + step * h;
+    const auto t0 = Clock::now();
+    StepDiagnostics diag;
+    diag.t = t;
+    try {
+      EvalDriverFunctions(model, t, &s);
+    } catch (const std::exception& e) {
+      rep.message = e.what();
+      return rep;
+    }
+    AimRotationDrivers(sys, &s);
+    if (step > 0 && pred > 0) {
+      // Taylor predictor from the previous step's derivatives (r and p series).
+      static constexpr double kFact[] = {1, 1, 2, 6};
+      for (auto& b : s.bodies) {
+        Vec4 pd[5];
+        b.CalcEulerDerivatives(pred, pd);
+        Vec3 r = b.r[0];
+        Vec4 p = pd[0];
+        double hk = 1;
+        for (int k = 1; k <= pred; ++k) {
+          hk *= h;
+          r += hk / kFact[k] * b.r[k];
+          p += hk / kFact[k] * pd[k];
+        }
+        b.r[0] = r;
+        b.p = p.normalized();
+        b.A = CalcA(b.p);
+        b.AD[0] = b.AB[0] = b.A;
+      }
+    }
+    SolveSummary sum = options.solver == PositionSolver::Ceres ? SolvePositionCeres(sys, active, solve, &s)
+                                                               : newton.Solve(solve, &s);
+    diag.iterations = sum.iterations;
+    diag.residual = sum.residual;
+    if (!sum.success) {
+      CalcPhi(sys, s, &ws.phi);
+      const double smin = SmallestSingularValue(sys, s, active);
+      std::ostringstream o;
+      o << "position solve failed at t = " << t << " s after " << rep.steps.size() << " rows: " << sum.message
+        << "\n  largest residuals:" << Describe(sys, ws.phi, active, newton.scales(), 3)
+        << "\n  smallest singular value of the scaled Φ_q: " << smin
+        << (smin < 1e-6 ? " (singular: a toggle, dead centre or lock-up position)" : "")
+        << "\n  Try: keep the drivers inside the reachable range, start the motion away from the singular "
+           "position, or use more steps.";
+      rep.message = o.str();
+      return rep;
+    }
+    if (!newton.Factorize(s)) {
+      rep.message = "Φ_q is singular at t = " + std::to_string(t) + " s (a singular position)";
+      return rep;
+    }
+    // Derivative solves: one factorization, `order` back-solves.
+    for (auto& b : s.bodies) {
+      for (int k = 1; k <= kMaxOrder; ++k) b.r[k].setZero();
+      for (int k = 0; k < kMaxOrder; ++k) b.w[k].setZero();
+    }
+    if (jac_p) {
+      jac_p->Fill(sys, s);
+      lu_p.factorize(jac_p->matrix());
+      for (int b = 0; b < n; ++b) ws.pd[b][0] = s.bodies[b].p;
+    }
+    for (int k = 1; k <= order; ++k) {
+      for (auto& b : s.bodies) b.UpdateDerived(k);
+      CalcRhs(sys, s, k, options.formulation, &ws.rhs_full);
+      for (size_t r = 0; r < active.size(); ++r) ws.rhs[r] = ws.rhs_full[active[r]];
+      if (!jac_p) {
+        newton.BackSolve(ws.rhs, &ws.x);
+        for (int b = 0; b < n; ++b) {
+          s.bodies[b].r[k] = ws.x.segment<3>(6 * b);
+          s.bodies[b].w[k - 1] = ws.x.segment<3>(6 * b + 3);
+        }
+      } else {
+        for (int b = 0; b < n; ++b) ws.rhs[active.size() + b] = ws.rhs_full[sys.num_rows() + b];
+        ws.x = lu_p.solve(ws.rhs);
+        for (int b = 0; b < n; ++b) {
+          BodyKinematics& bk = s.bodies[b];
+          auto& pd = ws.pd[b];
+          bk.r[k] = ws.x.segment<3>(7 * b);
+          pd[k] = ws.x.segment<4>(7 * b + 3);
+          // ω'^(k−1) from p^(k) (§1.3): ω' = 2Gṗ, ω̇' = 2Gp̈, ω̈' = 2Gp⃛ + 2G(ṗ)p̈, ω⃛' = 2Gp⁗ + 4G(ṗ)p⃛.
+          const Mat34 G = CalcG(pd[0]);
+          Vec3 w = 2 * G * pd[k];
+          if (k == 3) w += 2 * CalcG(pd[1]) * pd[2];
+          if (k == 4) w += 4 * CalcG(pd[1]) * pd[3];
+          bk.w[k - 1] = w;
+        }
+      }
+    }
+    for (auto& b : s.bodies) b.UpdateDerived(order);
+    if (!set_aside.empty()) {
+      CalcPhi(sys, s, &ws.phi);
+      diag.set_aside_residual = ScaledResidual(ws.phi, set_aside, aside_scales);
+    }
+    diag.condition = newton.ConditionEstimate();
+    diag.solve_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    UpdateAngleReferences(sys, &s);
+    rep.steps.push_back(diag);
+    on_step(s, diag);
+  }
+  rep.complete = true;
+  return rep;
+}
+
+}  // namespace mechkin

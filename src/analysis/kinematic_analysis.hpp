@@ -1,0 +1,52 @@
+// Driver-prescribed kinematic analysis (issue: driven analysis): at each time
+// step, the position solve Φ(q, t) = 0, then Φ_q q^(k) = RHS_k for k = 1..order
+// (velocity ν, acceleration γ, jerk η, snap σ) with one factorization of Φ_q.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "constraints/system.hpp"
+#include "solvers/position.hpp"
+
+namespace mechkin {
+
+enum class PositionSolver { Newton, Ceres };
+
+struct AnalysisOptions {
+  int order = 3;                       // highest derivative computed (0..4)
+  Formulation formulation = Formulation::Omega;
+  PositionSolver solver = PositionSolver::Newton;
+  double tolerance = 1e-10;            // scaled residual (relative to the mechanism size)
+  int max_iterations = 25;
+  int predictor_order = 3;             // Taylor predictor order (≤ order)
+  bool IsValid(std::string* error) const;
+};
+
+struct StepDiagnostics {
+  double t = 0;
+  int iterations = 0;
+  double residual = 0;             // scaled, active equations
+  double set_aside_residual = 0;   // scaled, redundant equations set aside
+  double condition = 0;            // estimate of cond(Φ_q)
+  double solve_seconds = 0;        // position + derivative solves of this step
+};
+
+struct AnalysisReport {
+  bool complete = false;
+  std::string message;                    // failure explanation (empty on success)
+  std::vector<std::string> set_aside;     // redundant equations, by name
+  std::vector<StepDiagnostics> steps;
+  int assembly_iterations = 0;
+};
+
+/// Called after each solved step with the state (pose and derivatives up to the
+/// order) and the step's diagnostics.
+using StepCallback = std::function<void(const SystemState&, const StepDiagnostics&)>;
+
+/// Runs the analysis of model.analysis. Never throws for a mechanism that cannot
+/// move as asked: the report says why and where it stopped.
+AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& options, const StepCallback& on_step);
+
+}  // namespace mechkin
