@@ -110,6 +110,10 @@ SolveSummary SolvePositionCeres(const ConstraintSystem& sys, const std::vector<i
   opt.gradient_tolerance = 1e-30;
   opt.parameter_tolerance = 1e-16;
   opt.num_threads = 1;
+  // Parameters are in metres and unit quaternions: a modest first trust region keeps
+  // Levenberg–Marquardt on the branch the predictor starts from.
+  opt.trust_region_strategy_type = ceres::DOGLEG;
+  opt.dogleg_type = ceres::SUBSPACE_DOGLEG;
   opt.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(opt, &problem, &summary);
