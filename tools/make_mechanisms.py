@@ -394,3 +394,30 @@ if __name__ == "__main__":
     four_bar(); offset_slider_crank(); spatial_slider_crank(); spatial_four_bars(); hooke(); bennett()
     screw_jack(); stewart(); five_bar(); planar_table(); cylindrical_spindle()
     print("wrote", len([f for f in os.listdir(OUT) if f.endswith(".json")]), "files to", os.path.normpath(OUT))
+
+
+def bricard():
+    # Trihedral Bricard 6R on the skew hexagon of a unit cube (five 1 m rods and
+    # ground, as in the IFToMM benchmark A04): each joint axis is perpendicular
+    # to both links it connects. Count 0, yet it moves with one degree of freedom.
+    P = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1], [0, 1, 1], [0, 0, 1]]
+    axes = [[0, 1, 0], [0, 0, 1], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 0, 0]]
+    names = ["rod1", "rod2", "rod3", "rod4", "rod5"]
+    bodies = [{"name": names[k], "position": mid(P[k], P[k + 1])} for k in range(5)]
+    links = ["ground"] + names + ["ground"]
+    joints = [{"name": "R%d" % (k + 1), "type": "revolute", "body1": links[k], "body2": links[k + 1],
+               "origin": P[k], "axis": axes[k]} for k in range(6)]
+    write("bricard-mechanism", {
+        "mechkin": 1, "name": "Bricard mechanism (trihedral, cube hexagon)",
+        "description": "Five 1 m rods and ground on the skew hexagon of a unit cube, each revolute axis perpendicular "
+                       "to its two links (the IFToMM A04 geometry): Grubler count 0, true mobility 1, one redundant equation.",
+        "units": {"length": "m", "angle": "deg"},
+        "bodies": bodies, "joints": joints,
+        "drivers": [{"name": "motor", "type": "rotation", "joint": "R1", "function": "60*t"}],
+        "analysis": {"start": 0, "end": 1, "steps": 100},
+        "outputs": [{"name": "R4_angle", "type": "joint", "joint": "R4"}],
+        "expect": {"grubler": 0, "mobility": 1, "redundant": 1, "idle": 0, "driven": "full"}})
+
+
+if __name__ == "__main__":
+    bricard()
