@@ -130,12 +130,20 @@ def rocker_point(D, e1, e2, c, phi):
 
 def spatial_four_bars():
     # Crank about z at the origin, rocker about x at D; coupler length from the design pose.
-    a, c = 30.0, 60.0
+    # Crank 30, coupler 105, rocker 80 mm, rocker pivot at (40, 20, 40): the crank turns
+    # fully (for every crank angle the coupler sphere meets the rocker circle with margin;
+    # checked over 360 degrees in steps of 1 degree).
+    a, b, c = 30.0, 105.0, 80.0
     A = [0.0, 0.0, 0.0]
-    D = [80.0, 20.0, 40.0]
-    th, phi = math.radians(40), math.radians(200)
+    D = [40.0, 20.0, 40.0]
+    th = math.radians(40)
     B = [a * math.cos(th), a * math.sin(th), 0.0]
+    # Rocker angle with |C - B| = b: (D-B)·u terms give K1 cos(phi) + K2 sin(phi) = K0.
+    d = sub(D, B)
+    K1, K2, K0 = 2 * c * d[1], 2 * c * d[2], b * b - dot(d, d) - c * c
+    phi = math.atan2(K2, K1) + math.acos(K0 / math.hypot(K1, K2))
     C = rocker_point(D, [0, 1, 0], [0, 0, 1], c, phi)
+    assert abs(norm(sub(C, B)) - b) < 1e-9
     u = unit(sub(C, B))
     axis1 = [0.0, 0.0, 1.0]            # in the crank, parallel to its bearing
     axis2 = unit(cross(axis1, u))      # in the coupler
@@ -144,8 +152,8 @@ def spatial_four_bars():
               "analysis": {"start": 0, "end": 1, "steps": 360}}
     write("spatial-four-bar-rusr", dict({
         "mechkin": 1, "name": "spatial four-bar R-U-S-R",
-        "description": "Input crank about z, output rocker about x on skew axes; the universal joint at the crank end "
-                       "removes the coupler's spin, so the count (1) is the true mobility.",
+        "description": "Input crank (30 mm) about z, output rocker (80 mm) about x on skew axes, coupler 105 mm; the "
+                       "universal joint at the crank end removes the coupler's spin, so the count (1) is the true mobility.",
         "bodies": [{"name": "crank", "position": r(mid(A, B))},
                    {"name": "coupler", "position": r(mid(B, C))},
                    {"name": "rocker", "position": r(mid(C, D))}],

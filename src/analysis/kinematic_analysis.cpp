@@ -68,6 +68,87 @@ double SmallestSingularValue(const ConstraintSystem& sys, const SystemState& s, 
   return svd.singularValues().size() ? svd.singularValues().tail(1)[0] : 0.0;
 }
 
+// Taylor predictor: moves every body by dt along its r and p series, using the
+// derivatives up to `order` held in the state (from the previous step).
+void PredictPose(double dt, int order, SystemState* s) {
+  static constexpr double kFact[] = {1, 1, 2, 6, 24};
+  for (auto& b : s->bodies) {
+    Vec4 pd[5];
+    b.CalcEulerDerivatives(order, pd);
+    Vec3 r = b.r[0];
+    Vec4 p = pd[0];
+    double hk = 1;
+    for (int k = 1; k <= order; ++k) {
+      hk *= dt;
+      r += hk / kFact[k] * b.r[k];
+      p += hk / kFact[k] * pd[k];
+    }
+    b.r[0] = r;
+    b.p = p.normalized();
+    b.A = CalcA(b.p);
+    b.AD[0] = b.AB[0] = b.A;
+  }
+}
+
+// Bisection in time for the root of det Φ_q between t_lo (sign_lo, state s_lo)
+// and t_hi, each probe a tight Newton solve from the last state on the lo side.
+SingularPosition LocateSingularity(const ConstraintSystem& sys, NewtonSolver* newton, const SystemState& base,
+                                   double t_lo, double t_hi, double sign_lo, double step, int order) {
+  // Every probe starts from the Taylor prediction off the last regular step, so it
+  // follows the same branch as the run did.
+  SystemState s_lo = base;
+  const Model& model = sys.model();
+  SolveOptions tight;
+  tight.tolerance = 1e-14;
+  tight.max_iterations = 100;
+  while (t_hi - t_lo > 1e-9 * step) {
+    const double mid = 0.5 * (t_lo + t_hi);
+    SystemState probe = base;
+    PredictPose(mid - base.t, order, &probe);
+    EvalDriverFunctions(model, mid, &probe);
+    AimRotationDrivers(sys, &probe);
+    newton->Solve(tight, &probe);
+    if (newton->Factorize(probe) && newton->JacobianSign() == sign_lo) {
+      t_lo = mid;
+      s_lo = probe;
+    } else {
+      t_hi = mid;
+    }
+  }
+  SingularPosition sp;
+  sp.t = 0.5 * (t_lo + t_hi);
+  EvalDriverFunctions(model, sp.t, &s_lo);
+  for (const Jet& j : s_lo.driver_values) sp.driver_values.push_back(j.c[0]);
+  // Instantaneous mobility of the joints and the equations of the vanishing direction.
+  if (6 * sys.num_bodies() <= 1200) {
+    const ConstraintSystem joints(model, false);
+    SystemState js(joints);
+    js.bodies = s_lo.bodies;
+    const Eigen::MatrixXd Jj = ScaledJacobian(joints, js);
+    Eigen::BDCSVD<Eigen::MatrixXd> sj(Jj);
+    int rank = 0;
+    for (int k = 0; k < sj.singularValues().size(); ++k) rank += sj.singularValues()[k] > 1e-6 * sj.singularValues()[0];
+    sp.joint_mobility = 6 * sys.num_bodies() - rank;
+    const std::vector<int>& rows = newton->rows();
+    const Eigen::MatrixXd J = ScaledJacobian(sys, s_lo);
+    Eigen::MatrixXd Ja(rows.size(), J.cols());
+    for (size_t k = 0; k < rows.size(); ++k) Ja.row(k) = J.row(rows[k]);
+    Eigen::BDCSVD<Eigen::MatrixXd> svd(Ja, Eigen::ComputeFullU);
+    const Eigen::VectorXd u = svd.matrixU().col(Ja.rows() - 1);  // left singular vector of σ_min
+    std::vector<std::pair<double, int>> w;
+    for (int k = 0; k < u.size(); ++k) w.emplace_back(std::abs(u[k]), rows[k]);
+    std::sort(w.rbegin(), w.rend());
+    std::vector<std::string> names;
+    for (const auto& [mag, row] : w) {
+      if (mag < 0.1 * w[0].first || names.size() >= 4) break;
+      const std::string src = sys.SourceName(row);
+      if (std::find(names.begin(), names.end(), src) == names.end()) names.push_back(src);
+    }
+    sp.involved = names;
+  }
+  return sp;
+}
+
 }  // namespace
 
 AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& options, const StepCallback& on_step) {
@@ -176,6 +257,8 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
   // 4. The time steps.
   const double h = (an.end - an.start) / an.steps;
   const int order = options.order, pred = std::min(options.predictor_order, order);
+  double prev_sign = 0, prev_t = an.start;
+  SystemState prev_state = s;
   for (int step = 0; step <= an.steps; ++step) {
     const double t = an.start + step * h;
     const auto t0 = Clock::now();
@@ -188,26 +271,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
       return rep;
     }
     AimRotationDrivers(sys, &s);
-    if (step > 0 && pred > 0) {
-      // Taylor predictor from the previous step's derivatives (r and p series).
-      static constexpr double kFact[] = {1, 1, 2, 6};
-      for (auto& b : s.bodies) {
-        Vec4 pd[5];
-        b.CalcEulerDerivatives(pred, pd);
-        Vec3 r = b.r[0];
-        Vec4 p = pd[0];
-        double hk = 1;
-        for (int k = 1; k <= pred; ++k) {
-          hk *= h;
-          r += hk / kFact[k] * b.r[k];
-          p += hk / kFact[k] * pd[k];
-        }
-        b.r[0] = r;
-        b.p = p.normalized();
-        b.A = CalcA(b.p);
-        b.AD[0] = b.AB[0] = b.A;
-      }
-    }
+    if (step > 0 && pred > 0) PredictPose(h, pred, &s);
     SolveSummary sum = options.solver == PositionSolver::Ceres ? SolvePositionCeres(sys, active, solve, &s)
                                                                : newton.Solve(solve, &s);
     diag.iterations = sum.iterations;
@@ -229,6 +293,34 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
       rep.message = "Φ_q is singular at t = " + std::to_string(t) + " s (a singular position)";
       return rep;
     }
+    // A sign change of det Φ_q means the path crossed a singular position (dead
+    // centre, toggle, change point) between the steps: locate and report it
+    // rather than continue on a branch chosen by chance.
+    const double sign = newton.JacobianSign();
+    if (step > 0 && sign != prev_sign) {
+      const SingularPosition sp = LocateSingularity(sys, &newton, prev_state, prev_t, t, prev_sign, h, std::max(pred, 1));
+      std::ostringstream o;
+      o.precision(12);
+      o << "singular position at t = " << sp.t << " s";
+      for (size_t d = 0; d < model.drivers.size(); ++d) {
+        const bool angle = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation;
+        o << ", driver `" << model.drivers[d].name << "` = "
+          << sp.driver_values[d] / (angle ? model.units.angle_to_si : model.units.length_to_si) << " "
+          << (angle ? model.units.angle_name : model.units.length_name);
+      }
+      o << "\n  instantaneous mobility of the joints there: " << sp.joint_mobility
+        << " (a dead centre, toggle or change point where branches meet)";
+      if (!sp.involved.empty()) {
+        o << "\n  equations that become dependent: ";
+        for (size_t k = 0; k < sp.involved.size(); ++k) o << (k ? ", `" : "`") << sp.involved[k] << "`";
+      }
+      o << "\n  The run stops here instead of choosing a branch. Try: end the motion before this time, or change the "
+           "geometry so that the mechanism does not pass through this position.";
+      rep.message = o.str();
+      rep.singular = sp;
+      return rep;
+    }
+    prev_sign = sign;
     // Derivative solves: one factorization, `order` back-solves.
     for (auto& b : s.bodies) {
       for (int k = 1; k <= kMaxOrder; ++k) b.r[k].setZero();
@@ -276,6 +368,8 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     UpdateAngleReferences(sys, &s);
     rep.steps.push_back(diag);
     on_step(s, diag);
+    prev_state = s;
+    prev_t = t;
   }
   rep.complete = true;
   return rep;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,17 @@ struct StepDiagnostics {
   double solve_seconds = 0;        // position + derivative solves of this step
 };
 
+/// A singular position found between two steps (the sign of det Φ_q flips).
+struct SingularPosition {
+  double t = 0;                         // located by bisection to 1e-9 of the step
+  std::vector<double> driver_values;    // SI, at t
+  int joint_mobility = 0;               // 6n − rank of the joints' Jacobian there
+  std::vector<std::string> involved;    // equations of the vanishing direction, by name
+};
+
 struct AnalysisReport {
   bool complete = false;
+  std::optional<SingularPosition> singular;
   std::string message;                    // failure explanation (empty on success)
   std::vector<std::string> set_aside;     // redundant equations, by name
   std::vector<StepDiagnostics> steps;

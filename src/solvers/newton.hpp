@@ -26,6 +26,9 @@ class NewtonSolver {
   /// Solves Φ_q x = b with the current factorization (b, x over the active rows / 6n columns).
   void BackSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x);
 
+  /// Sign of det Φ_q of the current factorization (ω' columns). It flips exactly
+  /// when the path crosses a singular position, which is how runs detect them.
+  double JacobianSign() { return lu_.signDeterminant(); }
   const std::vector<int>& rows() const { return rows_; }
   const Eigen::VectorXd& scales() const { return scales_; }
   const Eigen::SparseMatrix<double>& jacobian() const { return jac_.matrix(); }

@@ -195,10 +195,9 @@ TEST(Formulations, OmegaAndPGiveTheSameTable) {
   }
 }
 
-// Known defect (see the closing note of the analysis issue): on the skew spatial
-// four-bars (R-U-S-R, R-SS-R) Ceres stops in a spurious minimum near crank 90°.
 TEST(Solvers, CeresAndNewtonAgree) {
-  for (const char* file : {"spatial-slider-crank.json", "bennett-linkage.json", "offset-slider-crank.json"}) {
+  for (const char* file : {"spatial-slider-crank.json", "bennett-linkage.json", "offset-slider-crank.json",
+                           "spatial-four-bar-rusr.json"}) {
     const Model m = Load(file);
     AnalysisOptions o;
     const Table a = RunTable(m, o);

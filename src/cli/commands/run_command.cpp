@@ -100,6 +100,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
         << ", set-aside equations: " << rep.set_aside.size() << " (largest scaled residual " << worst_aside << ")\n"
         << line << "\n";
   }
+  if (rep.steps.empty()) return 1;  // refused or failed before the first row: no table at all
   std::ostringstream text;
   const bool partial = !rep.complete;
   const std::string note = partial ? rep.message.substr(0, rep.message.find('\n')) : "";
