@@ -48,6 +48,77 @@ std::string VecStr(const Vec3& v) {
   return buf;
 }
 
+// Rank-only mobility of a model (for checking suggestions): {mobility, redundant}, or
+// {-1, -1} when the joints do not assemble.
+std::pair<int, int> QuickMobility(const Model& model) {
+  const ConstraintSystem joints(model, false);
+  SystemState state(joints);
+  SolveOptions opt;
+  if (!AssembleMinNorm(joints, AllRows(joints), opt, &state).success) return {-1, -1};
+  const RankInfo info = CalcRank(ScaledJacobian(joints, state));
+  return {6 * model.num_bodies() - info.rank, joints.num_rows() - info.rank};
+}
+
+// Joint types that keep a joint's frame and remove fewer equations.
+std::vector<JointType> LooserTypes(JointType t) {
+  switch (t) {
+    case JointType::Revolute: return {JointType::Cylindrical, JointType::Universal, JointType::Spherical};
+    case JointType::Prismatic: return {JointType::Cylindrical};
+    case JointType::Screw: return {JointType::Cylindrical};
+    case JointType::Universal: return {JointType::Spherical};
+    case JointType::Cylindrical: return {JointType::Planar};
+    default: return {};
+  }
+}
+
+void Loosen(Joint* j, JointType t) {
+  if (t == JointType::Universal) j->frame2.h = j->frame2.f;  // second cross axis ⟂ the first
+  j->type = t;
+}
+
+// Finds one or two joint replacements that remove every redundant equation while
+// keeping the mobility, and verifies each by recomputing the rank.
+std::string SuggestRemoval(const Model& model, const MobilityReport& rep) {
+  std::set<int> candidates;
+  for (const auto& e : rep.redundant_equations)
+    for (size_t j = 0; j < model.joints.size(); ++j) {
+      const std::string& name = model.joints[j].name;
+      if (e.description.find("`" + name + "`") != std::string::npos ||
+          std::find(e.fixed_by.begin(), e.fixed_by.end(), name) != e.fixed_by.end())
+        candidates.insert(static_cast<int>(j));
+    }
+  auto describe = [&](int j, JointType t) {
+    return "joint `" + model.joints[j].name + "` (" + JointTypeName(model.joints[j].type) + ") by a " + JointTypeName(t) +
+           " joint";
+  };
+  const int r = rep.redundant;
+  for (int j : candidates)
+    for (JointType t : LooserTypes(model.joints[j].type)) {
+      if (EquationsRemoved(model.joints[j].type) - EquationsRemoved(t) != r) continue;
+      Model m = model;
+      Loosen(&m.joints[j], t);
+      if (QuickMobility(m) == std::pair<int, int>{rep.mobility, 0})
+        return "replace " + describe(j, t) + ": redundant 0, mobility still " + std::to_string(rep.mobility) + " (verified)";
+    }
+  for (int j1 : candidates)
+    for (int j2 : candidates) {
+      if (j2 <= j1) continue;
+      for (JointType t1 : LooserTypes(model.joints[j1].type))
+        for (JointType t2 : LooserTypes(model.joints[j2].type)) {
+          const int removed = EquationsRemoved(model.joints[j1].type) - EquationsRemoved(t1) +
+                              EquationsRemoved(model.joints[j2].type) - EquationsRemoved(t2);
+          if (removed != r) continue;
+          Model m = model;
+          Loosen(&m.joints[j1], t1);
+          Loosen(&m.joints[j2], t2);
+          if (QuickMobility(m) == std::pair<int, int>{rep.mobility, 0})
+            return "replace " + describe(j1, t1) + " and " + describe(j2, t2) + ": redundant 0, mobility still " +
+                   std::to_string(rep.mobility) + " (verified)";
+        }
+    }
+  return "";
+}
+
 }  // namespace
 
 MobilityReport CalcMobility(const Model& model) {
@@ -217,6 +288,10 @@ MobilityReport CalcMobility(const Model& model) {
       rep.remaining_freedoms.push_back(s + " is not driven");
     }
   }
+  if (rep.redundant > 0) {
+    const std::string suggestion = SuggestRemoval(model, rep);
+    if (!suggestion.empty()) rep.suggestions.push_back(suggestion);
+  }
   if (rep.redundant > 0)
     rep.verdict = "overconstrained: " + std::to_string(rep.redundant) + " redundant equation" +
                   (rep.redundant == 1 ? "" : "s") + " — the Grübler count undercounts the mobility";
@@ -247,6 +322,7 @@ nlohmann::json MobilityReportJson(const Model& model, const MobilityReport& r) {
   j["conflicting_drivers"] = r.conflicting_drivers;
   j["remaining_freedoms"] = r.remaining_freedoms;
   j["verdict"] = r.verdict;
+  j["suggestions"] = r.suggestions;
   return j;
 }
 
@@ -271,6 +347,7 @@ void PrintMobilityText(const nlohmann::json& m, std::ostream& out) {
     out << "\n";
   }
   if (!m["verdict"].get<std::string>().empty()) out << "  verdict: " << m["verdict"].get<std::string>() << "\n";
+  for (const auto& s : m["suggestions"]) out << "  suggestion: " << s.get<std::string>() << "\n";
   out << "  idle freedoms: " << m["idle"].size() << "\n";
   for (const auto& f : m["idle"]) out << "    - " << f["description"].get<std::string>() << "\n";
   out << "  DOF after drivers: " << m["dof_after_drivers"].get<int>() << " — driven: " << m["driven"].get<std::string>();
