@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "cli/commands/bench_command.hpp"
 #include "cli/commands/check_command.hpp"
 #include "cli/commands/run_command.hpp"
 
@@ -13,8 +14,10 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "mechkin 0.1.0");
     mechkin::CheckOptions check;
     mechkin::RunOptions run;
+    mechkin::BenchCommandOptions bench;
     mechkin::SetupCheckCommand(app, &check);
     mechkin::SetupRunCommand(app, &run);
+    mechkin::SetupBenchCommand(app, &bench);
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -23,6 +26,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("check")) return mechkin::RunCheck(check, std::cout, std::cerr);
     if (app.got_subcommand("run")) return mechkin::RunRun(run, std::cout, std::cerr);
+    if (app.got_subcommand("bench")) return mechkin::RunBenchCommand(bench, std::cout, std::cerr);
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "mechkin: internal error: " << e.what() << "\n";

@@ -1,0 +1,69 @@
+#include "cli/commands/bench_command.hpp"
+
+#include <sstream>
+
+#include "analysis/speed_accuracy.hpp"
+#include "model/loader.hpp"
+#include "output/motion_table.hpp"
+
+namespace mechkin {
+
+void SetupBenchCommand(CLI::App& app, BenchCommandOptions* o) {
+  CLI::App* cmd = app.add_subcommand("bench", "Measure the speed/accuracy trade over a grid of settings");
+  cmd->add_option("file", o->file, "Mechanism file (format v1)")->required();
+  cmd->add_flag("--quick", o->quick, "Small grid (a few seconds)");
+  cmd->add_option("--repeats", o->repeats, "Timed repeats per setting")->check(CLI::Range(1, 50));
+  cmd->add_option("--reference", o->reference,
+                  "Reference table (CSV from `mechkin run --si`, same columns); default: tightest tolerance, 8x steps");
+  cmd->add_option("--csv", o->csv, "Where to write the whole grid (CSV)");
+  cmd->add_option("--svg", o->svg, "Where to write the Pareto front plot (SVG)");
+}
+
+int RunBenchCommand(const BenchCommandOptions& o, std::ostream& out, std::ostream& err) {
+  const LoadResult loaded = LoadMechanismFile(o.file);
+  if (!loaded.ok()) {
+    for (const auto& e : loaded.errors) err << o.file << ": error: " << e.ToString() << "\n";
+    return 1;
+  }
+  const Model& model = *loaded.model;
+  if (!model.analysis) {
+    err << o.file << ": no 'analysis' block to benchmark\n";
+    return 1;
+  }
+  ReferenceTable reference;
+  try {
+    if (!o.reference.empty()) {
+      reference = ReadReferenceCsv(o.reference);
+    } else {
+      BenchSetting ref{PositionSolver::Newton, 1e-13, 3, Formulation::Omega, 8 * model.analysis->steps};
+      AnalysisReport rep;
+      reference = RunForBench(model, ref, &rep);
+      if (!rep.complete) {
+        err << "mechkin bench: the reference run failed: " << rep.message << "\n";
+        return 1;
+      }
+      out << "reference: " << ref.Describe() << "\n";
+    }
+  } catch (const std::exception& e) {
+    err << "mechkin bench: " << e.what() << "\n";
+    return 1;
+  }
+  BenchOptions bo;
+  bo.quick = o.quick;
+  bo.repeats = o.repeats;
+  const std::vector<BenchResult> results = RunBench(model, BenchGrid(model, bo), reference, bo);
+  out << results.size() << " settings measured on " << (model.name.empty() ? o.file : model.name) << "\n";
+  PrintFront(results, out);
+  std::ostringstream csv, svg;
+  WriteBenchCsv(results, csv);
+  WriteBenchSvg(results, "mechkin bench: " + (model.name.empty() ? o.file : model.name), svg);
+  std::string why;
+  if (!WriteFileAtomically(o.csv, csv.str(), &why) || !WriteFileAtomically(o.svg, svg.str(), &why)) {
+    err << "mechkin bench: " << why << "\n";
+    return 1;
+  }
+  out << "grid written to " << o.csv << ", front plot to " << o.svg << "\n";
+  return 0;
+}
+
+}  // namespace mechkin
