@@ -273,7 +273,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     AimRotationDrivers(sys, &s);
     if (step > 0 && pred > 0) PredictPose(h, pred, &s);
     SolveSummary sum = options.solver == PositionSolver::Ceres ? SolvePositionCeres(sys, active, solve, &s)
-                                                               : newton.Solve(solve, &s);
+                                                               : newton.Solve(solve, &s, options.modified_newton && step > 0);
     diag.iterations = sum.iterations;
     diag.residual = sum.residual;
     if (!sum.success) {
@@ -332,7 +332,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
       for (int b = 0; b < n; ++b) ws.pd[b][0] = s.bodies[b].p;
     }
     for (int k = 1; k <= order; ++k) {
-      for (auto& b : s.bodies) b.UpdateDerived(k);
+      for (auto& b : s.bodies) b.PrepareOrder(k);
       CalcRhs(sys, s, k, options.formulation, &ws.rhs_full);
       for (size_t r = 0; r < active.size(); ++r) ws.rhs[r] = ws.rhs_full[active[r]];
       if (!jac_p) {
@@ -358,7 +358,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
         }
       }
     }
-    for (auto& b : s.bodies) b.UpdateDerived(order);
+    for (auto& b : s.bodies) b.CompleteOrder(order);
     if (!set_aside.empty()) {
       CalcPhi(sys, s, &ws.phi);
       diag.set_aside_residual = ScaledResidual(ws.phi, set_aside, aside_scales);

@@ -22,6 +22,7 @@ struct AnalysisOptions {
   double tolerance = 1e-10;            // scaled residual (relative to the mechanism size)
   int max_iterations = 25;
   int predictor_order = 3;             // Taylor predictor order (≤ order)
+  bool modified_newton = true;         // reuse the previous step's factorization while it converges fast
   bool IsValid(std::string* error) const;
 };
 

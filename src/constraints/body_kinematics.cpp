@@ -42,6 +42,36 @@ void BodyKinematics::UpdateDerived(int order) {
   v3 = -W0 * w[2] - 0.5 * W00 * w[1] + 1.5 * w[0].dot(w[1]) * w[0];
 }
 
+void BodyKinematics::CompleteOrder(int k) {
+  if (k < 1) return;
+  D[k] = B[k] + Tilde(w[k - 1]);
+  AD[k] = A * D[k];
+}
+
+void BodyKinematics::PrepareOrder(int k) {
+  if (k == 1) {
+    D[0] = B[0] = Mat3::Identity();
+    AD[0] = AB[0] = A;
+    B[1].setZero();
+    AB[1].setZero();
+    return;
+  }
+  CompleteOrder(k - 1);
+  const Mat3 W0 = Tilde(w[0]);
+  if (k == 2) {
+    B[2] = W0 * W0;
+  } else if (k == 3) {
+    const Mat3 W1 = Tilde(w[1]);
+    B[3] = 2 * W0 * W1 + W1 * W0 + W0 * W0 * W0;  // H' (§1.4)
+    v = -0.5 * W0 * w[1] + 0.25 * w[0].squaredNorm() * w[0];
+  } else if (k == 4) {
+    const Mat3 W1 = Tilde(w[1]), W2 = Tilde(w[2]), W00 = W0 * W0;
+    B[4] = W2 * W0 + 3 * W1 * W1 + 3 * W0 * W2 + W1 * W00 + 2 * W0 * W1 * W0 + 3 * W00 * W1 + W00 * W00;  // W' (§1.4)
+    v3 = -W0 * w[2] - 0.5 * W00 * w[1] + 1.5 * w[0].dot(w[1]) * w[0];
+  }
+  AB[k] = A * B[k];
+}
+
 void BodyKinematics::CalcEulerDerivatives(int order, Vec4* out) const {
   static constexpr double kBinom[4][4] = {{1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}};
   out[0] = p;

@@ -32,6 +32,11 @@ struct BodyKinematics {
   void SetPose(const Vec3& position, const Vec4& euler);
   /// Recomputes D, B, AD, AB, v, v3 from r, p, w for derivative orders up to `order`.
   void UpdateDerived(int order);
+  /// Incremental form for the derivative solves: before solving order k (ω'^(0..k−2)
+  /// known) completes D[k−1] and forms B[k] (and v, v3 for k = 3, 4) — all that
+  /// RHS_k reads. CompleteOrder(k) fills D[k] once ω'^(k−1) is known.
+  void PrepareOrder(int k);
+  void CompleteOrder(int k);
 
   /// k-th derivative of the global point r + A s' (k = 0: the point itself).
   Vec3 PointDerivative(const Vec3& s, int k) const { return (k == 0 ? r[0] + A * s : Vec3(r[k] + AD[k] * s)); }

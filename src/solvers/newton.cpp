@@ -6,40 +6,63 @@ namespace mechkin {
 
 NewtonSolver::NewtonSolver(const ConstraintSystem& sys, std::vector<int> rows)
     : sys_(sys), rows_(std::move(rows)), scales_(RowScales(sys, rows_)), jac_(sys, Formulation::Omega, rows_) {
-  lu_.analyzePattern(jac_.matrix());
+  const int n = 6 * sys.num_bodies();
+  dense_ = n <= 120 && static_cast<int>(rows_.size()) == n;
+  if (dense_) {
+    dense_J_.setZero(n, n);
+    dense_lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+  } else {
+    lu_.analyzePattern(jac_.matrix());
+  }
   rhs_.resize(rows_.size());
-  dq_.resize(6 * sys.num_bodies());
+  dq_.resize(n);
+  cond_x_ = Eigen::VectorXd::Ones(n).normalized();
+  cond_y_.resize(n);
 }
 
 bool NewtonSolver::Factorize(const SystemState& s) {
   jac_.Fill(sys_, s);
-  lu_.factorize(jac_.matrix());
-  factorized_ = lu_.info() == Eigen::Success;
+  ++factorizations_;
+  if (dense_) {
+    dense_J_ = jac_.matrix();
+    dense_lu_.compute(dense_J_);
+    // Partial pivoting does not report singularity: an exactly zero pivot does.
+    factorized_ = dense_lu_.matrixLU().diagonal().cwiseAbs().minCoeff() > 0;
+  } else {
+    lu_.factorize(jac_.matrix());
+    factorized_ = lu_.info() == Eigen::Success;
+  }
   return factorized_;
 }
 
-void NewtonSolver::BackSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x) { *x = lu_.solve(b); }
+void NewtonSolver::BackSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x) {
+  if (dense_) *x = dense_lu_.solve(b);
+  else *x = lu_.solve(b);
+}
+
+double NewtonSolver::JacobianSign() {
+  if (dense_) return dense_lu_.determinant() < 0 ? -1.0 : 1.0;
+  return lu_.signDeterminant();
+}
 
 double NewtonSolver::ConditionEstimate() {
   if (!factorized_) return std::numeric_limits<double>::infinity();
-  // ‖J‖_F · ‖J⁻¹‖ with ‖J⁻¹‖ from three steps of inverse iteration: cheap (three
-  // back-solves with the factors we already have), an underestimate at worst.
-  Eigen::VectorXd x = Eigen::VectorXd::Ones(jac_.matrix().cols()).normalized();
-  double inv_norm = 0;
-  for (int it = 0; it < 3; ++it) {
-    const Eigen::VectorXd y = lu_.solve(x);
-    inv_norm = y.norm();
-    if (!(inv_norm > 0) || !std::isfinite(inv_norm)) return std::numeric_limits<double>::infinity();
-    x = y / inv_norm;
-  }
+  // ‖J‖_F · ‖J⁻¹‖, with ‖J⁻¹‖ from one step of inverse iteration per call,
+  // warm-started from the previous call's vector: along a run it converges to
+  // the dominant direction of J⁻¹ (an underestimate at worst) for one back-solve.
+  BackSolve(cond_x_, &cond_y_);
+  const double inv_norm = cond_y_.norm();
+  if (!(inv_norm > 0) || !std::isfinite(inv_norm)) return std::numeric_limits<double>::infinity();
+  cond_x_ = cond_y_ / inv_norm;
   return jac_.matrix().norm() * inv_norm;
 }
 
-SolveSummary NewtonSolver::Solve(const SolveOptions& options, SystemState* s) {
+SolveSummary NewtonSolver::Solve(const SolveOptions& options, SystemState* s, bool reuse) {
   SolveSummary sum;
   CalcPhi(sys_, *s, &phi_);
   sum.residual = ScaledResidual(phi_, rows_, scales_);
   double prev = std::numeric_limits<double>::infinity();
+  bool stale = reuse && factorized_;  // held factorization from an earlier pose
   while (!(sum.residual <= options.tolerance)) {
     if (sum.iterations >= options.max_iterations) {
       sum.message = "Newton did not converge in " + std::to_string(options.max_iterations) + " iterations";
@@ -49,13 +72,15 @@ SolveSummary NewtonSolver::Solve(const SolveOptions& options, SystemState* s) {
       sum.message = "Newton iterations diverge (the residual grows)";
       return sum;
     }
+    // Modified Newton: keep the stale factorization while it contracts by 10× per step.
+    if (stale && sum.iterations > 0 && !(sum.residual < 0.1 * prev)) stale = false;
     prev = sum.residual;
-    if (!Factorize(*s)) {
+    if (!stale && !Factorize(*s)) {
       sum.message = "the constraint Jacobian is singular";
       return sum;
     }
     for (size_t k = 0; k < rows_.size(); ++k) rhs_[k] = -phi_[rows_[k]];
-    dq_ = lu_.solve(rhs_);
+    BackSolve(rhs_, &dq_);
     if (!dq_.allFinite()) {
       sum.message = "the Newton step is not finite (singular Jacobian)";
       return sum;

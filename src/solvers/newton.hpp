@@ -1,9 +1,15 @@
-// Newton–Raphson position solve on the configuration manifold with a sparse LU
-// of Φ_q (ω' version). The symbolic analysis is done once per row set; each
-// iteration refactorizes numerically. After Solve(), the factorization held is
-// Φ_q at the solution, ready for the velocity … snap back-solves of the step.
+// Newton–Raphson position solve on the configuration manifold with an LU of Φ_q
+// (ω' version): dense partial-pivoting LU up to 20 bodies (faster for small
+// systems), else sparse LU with the symbolic analysis done once per row set.
+//
+// Modified Newton: Solve() first iterates with the factorization it already holds
+// (normally Φ_q at the previous step's solution, which the derivative solves
+// needed anyway) and refactorizes only when that stops contracting fast (the
+// residual must drop by 10× per iteration). With the Taylor predictor one
+// back-solve usually suffices.
 #pragma once
 
+#include <Eigen/LU>
 #include <Eigen/SparseLU>
 #include <memory>
 
@@ -17,9 +23,10 @@ class NewtonSolver {
   NewtonSolver(const ConstraintSystem& sys, std::vector<int> rows);
 
   /// Solves Φ(q, t) = 0 on the rows from the state's current pose (the predictor).
+  /// Uses the held factorization first when `reuse` (modified Newton).
   /// Driver values must already be evaluated at t. On return the factorization is
   /// that of Φ_q at the final pose (also on failure, for diagnostics).
-  SolveSummary Solve(const SolveOptions& options, SystemState* s);
+  SolveSummary Solve(const SolveOptions& options, SystemState* s, bool reuse = false);
 
   /// Factorizes Φ_q at the current pose (ω' version). Returns false if singular.
   bool Factorize(const SystemState& s);
@@ -28,7 +35,7 @@ class NewtonSolver {
 
   /// Sign of det Φ_q of the current factorization (ω' columns). It flips exactly
   /// when the path crosses a singular position, which is how runs detect them.
-  double JacobianSign() { return lu_.signDeterminant(); }
+  double JacobianSign();
   const std::vector<int>& rows() const { return rows_; }
   const Eigen::VectorXd& scales() const { return scales_; }
   const Eigen::SparseMatrix<double>& jacobian() const { return jac_.matrix(); }
@@ -42,8 +49,16 @@ class NewtonSolver {
   Eigen::VectorXd scales_;
   SparseJacobian jac_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  bool dense_ = false;
+  Eigen::MatrixXd dense_J_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
   bool factorized_ = false;
-  Eigen::VectorXd phi_, rhs_, dq_;
+  int factorizations_ = 0;
+  Eigen::VectorXd phi_, rhs_, dq_, cond_x_, cond_y_;
+
+ public:
+  /// Numeric factorizations so far (for --stats and the benchmarks).
+  int factorizations() const { return factorizations_; }
 };
 
 }  // namespace mechkin
