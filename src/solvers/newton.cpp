@@ -10,7 +10,6 @@ NewtonSolver::NewtonSolver(const ConstraintSystem& sys, std::vector<int> rows)
   dense_ = n <= 120 && static_cast<int>(rows_.size()) == n;
   if (dense_) {
     dense_J_.setZero(n, n);
-    dense_lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
   } else {
     lu_.analyzePattern(jac_.matrix());
   }
@@ -25,9 +24,7 @@ bool NewtonSolver::Factorize(const SystemState& s) {
   ++factorizations_;
   if (dense_) {
     dense_J_ = jac_.matrix();
-    dense_lu_.compute(dense_J_);
-    // Partial pivoting does not report singularity: an exactly zero pivot does.
-    factorized_ = dense_lu_.matrixLU().diagonal().cwiseAbs().minCoeff() > 0;
+    factorized_ = dense_lu_.Compute(&dense_J_);
   } else {
     lu_.factorize(jac_.matrix());
     factorized_ = lu_.info() == Eigen::Success;
@@ -36,12 +33,17 @@ bool NewtonSolver::Factorize(const SystemState& s) {
 }
 
 void NewtonSolver::BackSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x) {
-  if (dense_) *x = dense_lu_.solve(b);
+  if (dense_) dense_lu_.Solve(b, x);
   else *x = lu_.solve(b);
 }
 
 double NewtonSolver::JacobianSign() {
-  if (dense_) return dense_lu_.determinant() < 0 ? -1.0 : 1.0;
+  if (dense_) {
+    // sign(det) = permutation sign × signs of U's diagonal.
+    double s = dense_lu_.sign();
+    for (int k = 0; k < dense_J_.rows(); ++k) if (dense_J_(k, k) < 0) s = -s;
+    return s;
+  }
   return lu_.signDeterminant();
 }
 

@@ -13,6 +13,7 @@
 #include <Eigen/SparseLU>
 #include <memory>
 
+#include "math/small_lu.hpp"
 #include "solvers/position.hpp"
 
 namespace mechkin {
@@ -51,7 +52,7 @@ class NewtonSolver {
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
   bool dense_ = false;
   Eigen::MatrixXd dense_J_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
+  SmallLU dense_lu_;
   bool factorized_ = false;
   int factorizations_ = 0;
   Eigen::VectorXd phi_, rhs_, dq_, cond_x_, cond_y_;
