@@ -257,71 +257,14 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
   // 4. The time steps.
   const double h = (an.end - an.start) / an.steps;
   const int order = options.order, pred = std::min(options.predictor_order, order);
-  double prev_sign = 0, prev_t = an.start;
-  SystemState prev_state = s;
-  for (int step = 0; step <= an.steps; ++step) {
-    const double t = an.start + step * h;
-    const auto t0 = Clock::now();
-    StepDiagnostics diag;
-    diag.t = t;
-    try {
-      EvalDriverFunctions(model, t, &s);
-    } catch (const std::exception& e) {
-      rep.message = e.what();
-      return rep;
-    }
-    AimRotationDrivers(sys, &s);
-    if (step > 0 && pred > 0) PredictPose(h, pred, &s);
-    SolveSummary sum = options.solver == PositionSolver::Ceres ? SolvePositionCeres(sys, active, solve, &s)
-                                                               : newton.Solve(solve, &s, options.modified_newton && step > 0);
-    diag.iterations = sum.iterations;
-    diag.residual = sum.residual;
-    if (!sum.success) {
-      CalcPhi(sys, s, &ws.phi);
-      const double smin = SmallestSingularValue(sys, s, active);
-      std::ostringstream o;
-      o << "position solve failed at t = " << t << " s after " << rep.steps.size() << " rows: " << sum.message
-        << "\n  largest residuals:" << Describe(sys, ws.phi, active, newton.scales(), 3)
-        << "\n  smallest singular value of the scaled Φ_q: " << smin
-        << (smin < 1e-6 ? " (singular: a toggle, dead centre or lock-up position)" : "")
-        << "\n  Try: keep the drivers inside the reachable range, start the motion away from the singular "
-           "position, or use more steps.";
-      rep.message = o.str();
-      return rep;
-    }
-    if (!newton.Factorize(s)) {
-      rep.message = "Φ_q is singular at t = " + std::to_string(t) + " s (a singular position)";
-      return rep;
-    }
-    // A sign change of det Φ_q means the path crossed a singular position (dead
-    // centre, toggle, change point) between the steps: locate and report it
-    // rather than continue on a branch chosen by chance.
-    const double sign = newton.JacobianSign();
-    if (step > 0 && sign != prev_sign) {
-      const SingularPosition sp = LocateSingularity(sys, &newton, prev_state, prev_t, t, prev_sign, h, std::max(pred, 1));
-      std::ostringstream o;
-      o.precision(12);
-      o << "singular position at t = " << sp.t << " s";
-      for (size_t d = 0; d < model.drivers.size(); ++d) {
-        const bool angle = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation;
-        o << ", driver `" << model.drivers[d].name << "` = "
-          << sp.driver_values[d] / (angle ? model.units.angle_to_si : model.units.length_to_si) << " "
-          << (angle ? model.units.angle_name : model.units.length_name);
-      }
-      o << "\n  instantaneous mobility of the joints there: " << sp.joint_mobility
-        << " (a dead centre, toggle or change point where branches meet)";
-      if (!sp.involved.empty()) {
-        o << "\n  equations that become dependent: ";
-        for (size_t k = 0; k < sp.involved.size(); ++k) o << (k ? ", `" : "`") << sp.involved[k] << "`";
-      }
-      o << "\n  The run stops here instead of choosing a branch. Try: end the motion before this time, or change the "
-           "geometry so that the mechanism does not pass through this position.";
-      rep.message = o.str();
-      rep.singular = sp;
-      return rep;
-    }
-    prev_sign = sign;
-    // Derivative solves: one factorization, `order` back-solves.
+  // The sub-steps (below) need derivatives for their predictor even at --order 0.
+  double prev_sign = 0;
+  bool have_sign = false;
+  SystemState prev_state = s, predicted = s, good_state = s;
+  SolveSummary last;
+
+  // Derivative solves at the current pose: one factorization, `order` back-solves.
+  auto derivatives = [&]() {
     for (auto& b : s.bodies) {
       for (int k = 1; k <= kMaxOrder; ++k) b.r[k].setZero();
       for (int k = 0; k < kMaxOrder; ++k) b.w[k].setZero();
@@ -359,6 +302,116 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
       }
     }
     for (auto& b : s.bodies) b.CompleteOrder(order);
+  };
+  // Largest move between two poses: |Δr| / L and the rotation angle, per body.
+  auto distance = [&](const SystemState& a, const SystemState& b) {
+    double d = 0;
+    for (int k = 0; k < n; ++k) {
+      d = std::max(d, (a.bodies[k].r[0] - b.bodies[k].r[0]).norm() / model.characteristic_length);
+      d = std::max(d, 2 * std::acos(std::min(1.0, std::abs(a.bodies[k].p.dot(b.bodies[k].p)))));
+    }
+    return d;
+  };
+  enum class Outcome { Ok, Failed, Suspect };
+  // One attempt from the accepted state in `s` to time t (predictor over dt).
+  // Suspect: det Φ_q changed sign, or the solution is far (> 0.1 L or rad) from the
+  // prediction — the marks of a jump to another assembly branch or of a singular
+  // position between the two times.
+  auto attempt = [&](double t, double dt, bool reuse) -> Outcome {
+    EvalDriverFunctions(model, t, &s);
+    AimRotationDrivers(sys, &s);
+    if (dt > 0 && pred > 0) PredictPose(dt, pred, &s);
+    predicted.bodies = s.bodies;
+    last = options.solver == PositionSolver::Ceres ? SolvePositionCeres(sys, active, solve, &s)
+                                                   : newton.Solve(solve, &s, reuse && options.modified_newton);
+    if (!last.success || !newton.Factorize(s)) return Outcome::Failed;
+    const double sign = newton.JacobianSign();
+    if (options.branch_guard) {
+      if (have_sign && sign != prev_sign) return Outcome::Suspect;
+      if (dt > 0 && distance(predicted, s) > 0.1) return Outcome::Suspect;
+    }
+    derivatives();
+    prev_sign = sign;
+    have_sign = true;
+    return Outcome::Ok;
+  };
+  auto failure_message = [&](double t, const std::string& why) {
+    CalcPhi(sys, s, &ws.phi);
+    const double smin = SmallestSingularValue(sys, s, active);
+    std::ostringstream o;
+    o << "position solve failed at t = " << t << " s after " << rep.steps.size() << " rows: " << why
+      << "\n  largest residuals:" << Describe(sys, ws.phi, active, newton.scales(), 3)
+      << "\n  smallest singular value of the scaled Φ_q: " << smin
+      << (smin < 1e-6 ? " (singular: a toggle, dead centre or lock-up position)" : "")
+      << "\n  Try: keep the drivers inside the reachable range, start the motion away from the singular "
+         "position, or use more steps.";
+    return o.str();
+  };
+
+  for (int step = 0; step <= an.steps; ++step) {
+    const double t = an.start + step * h;
+    const auto t0 = Clock::now();
+    StepDiagnostics diag;
+    diag.t = t;
+    Outcome out;
+    try {
+      out = attempt(t, step > 0 ? h : 0, step > 0);
+      diag.iterations = last.iterations;
+      if (out != Outcome::Ok && step > 0) {
+        // Adaptive sub-stepping between the table rows: halve until every sub-step
+        // is regular. A sign change that survives 1/1024 of the step is a genuine
+        // singular position.
+        double bad_t = t, good_t = prev_state.t, good_sign = prev_sign;
+        for (int parts = 2; parts <= 1024 && out != Outcome::Ok; parts *= 2) {
+          s = prev_state;
+          prev_sign = good_sign;
+          good_state = prev_state;
+          good_t = prev_state.t;
+          for (int i = 1; i <= parts; ++i) {
+            const double ti = prev_state.t + (t - prev_state.t) * i / parts;
+            out = attempt(ti, (t - prev_state.t) / parts, true);
+            diag.iterations += last.iterations;
+            if (out != Outcome::Ok) { bad_t = ti; break; }
+            UpdateAngleReferences(sys, &s);
+            good_state = s;
+            good_t = ti;
+          }
+          if (out == Outcome::Ok) ++diag.substeps_refinements;
+        }
+        if (out == Outcome::Suspect) {
+          const SingularPosition sp = LocateSingularity(sys, &newton, good_state, good_t, bad_t, prev_sign,
+                                                        (t - prev_state.t) / 1024, std::max(pred, 1));
+          std::ostringstream o;
+          o.precision(12);
+          o << "singular position at t = " << sp.t << " s";
+          for (size_t d = 0; d < model.drivers.size(); ++d) {
+            const bool angle = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation;
+            o << ", driver `" << model.drivers[d].name << "` = "
+              << sp.driver_values[d] / (angle ? model.units.angle_to_si : model.units.length_to_si) << " "
+              << (angle ? model.units.angle_name : model.units.length_name);
+          }
+          o << "\n  instantaneous mobility of the joints there: " << sp.joint_mobility
+            << " (a dead centre, toggle or change point where branches meet)";
+          if (!sp.involved.empty()) {
+            o << "\n  equations that become dependent: ";
+            for (size_t k = 0; k < sp.involved.size(); ++k) o << (k ? ", `" : "`") << sp.involved[k] << "`";
+          }
+          o << "\n  The run stops here instead of choosing a branch. Try: end the motion before this time, or change "
+               "the geometry so that the mechanism does not pass through this position.";
+          rep.message = o.str();
+          rep.singular = sp;
+          return rep;
+        }
+      }
+    } catch (const std::exception& e) {
+      rep.message = e.what();
+      return rep;
+    }
+    if (out == Outcome::Failed) {
+      rep.message = failure_message(t, last.message);
+      return rep;
+    }
+    diag.residual = last.residual;
     if (!set_aside.empty()) {
       CalcPhi(sys, s, &ws.phi);
       diag.set_aside_residual = ScaledResidual(ws.phi, set_aside, aside_scales);
@@ -369,7 +422,6 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     rep.steps.push_back(diag);
     on_step(s, diag);
     prev_state = s;
-    prev_t = t;
   }
   rep.complete = true;
   return rep;

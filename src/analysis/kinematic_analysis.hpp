@@ -23,6 +23,7 @@ struct AnalysisOptions {
   int max_iterations = 25;
   int predictor_order = 3;             // Taylor predictor order (≤ order)
   bool modified_newton = true;         // reuse the previous step's factorization while it converges fast
+  bool branch_guard = true;            // sub-step on a det Φ_q sign change or a far jump (off: plain Newton)
   bool IsValid(std::string* error) const;
 };
 
@@ -33,6 +34,7 @@ struct StepDiagnostics {
   double set_aside_residual = 0;   // scaled, redundant equations set aside
   double condition = 0;            // estimate of cond(Φ_q)
   double solve_seconds = 0;        // position + derivative solves of this step
+  int substeps_refinements = 0;    // 1 when the step had to be refined into sub-steps
 };
 
 /// A singular position found between two steps (the sign of det Φ_q flips).
