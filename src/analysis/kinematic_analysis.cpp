@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "mobility/mobility.hpp"
@@ -48,14 +49,21 @@ struct Workspace {
   std::vector<std::array<Vec4, 5>> pd;  // p-version Euler parameter derivatives per body
 };
 
-std::string Describe(const ConstraintSystem& sys, const Eigen::VectorXd& phi, const std::vector<int>& rows,
-                     const Eigen::VectorXd& scales, int count) {
+std::string Describe(const ConstraintSystem& sys, const SystemState& s, const Eigen::VectorXd& phi,
+                     const std::vector<int>& rows, const Eigen::VectorXd& scales, int count) {
   std::vector<std::pair<double, int>> r;
   for (size_t k = 0; k < rows.size(); ++k) r.emplace_back(std::abs(phi[rows[k]]) * scales[k], rows[k]);
   std::sort(r.rbegin(), r.rend());
+  const Units& u = sys.model().units;
   std::ostringstream o;
-  for (int k = 0; k < count && k < static_cast<int>(r.size()); ++k)
-    o << "\n    " << sys.DescribeRow(r[k].second) << ": scaled residual " << r[k].first;
+  for (int k = 0; k < count && k < static_cast<int>(r.size()); ++k) {
+    const auto [e, local] = sys.Locate(r[k].second);
+    const Constraint& c = *sys.entries()[e].constraint;
+    const double miss = c.Misfit(MakeInput(sys, s, e), local, phi[r[k].second]);
+    o << "\n    " << sys.DescribeRow(r[k].second) << ": misses by ";
+    if (c.LengthPower() == 0) o << std::abs(miss) / u.angle_to_si << " " << u.angle_name;
+    else o << std::abs(miss) / u.length_to_si << " " << u.length_name;
+  }
   return o.str();
 }
 
@@ -177,7 +185,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
       Eigen::VectorXd phi;
       CalcPhi(sys, s, &phi);
       rep.message = "the design pose cannot be assembled (scaled residual " + std::to_string(a.residual) +
-                    "); the equations that cannot close:" + Describe(sys, phi, all, RowScales(sys, all), 3) +
+                    "); the equations that cannot close:" + Describe(sys, s, phi, all, RowScales(sys, all), 3) +
                     "\n  Check the lengths and joint positions in the file.";
       return rep;
     }
@@ -247,7 +255,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
         Eigen::VectorXd phi;
         CalcPhi(sys, s, &phi);
         rep.message = "cannot reach the drivers' values at t = start from the design pose (" + r.message +
-                      "); largest residuals:" + Describe(sys, phi, active, newton.scales(), 3);
+                      "); largest residuals:" + Describe(sys, s, phi, active, newton.scales(), 3);
         return rep;
       }
       UpdateAngleReferences(sys, &s);
@@ -340,7 +348,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     const double smin = SmallestSingularValue(sys, s, active);
     std::ostringstream o;
     o << "position solve failed at t = " << t << " s after " << rep.steps.size() << " rows: " << why
-      << "\n  largest residuals:" << Describe(sys, ws.phi, active, newton.scales(), 3)
+      << "\n  largest residuals:" << Describe(sys, s, ws.phi, active, newton.scales(), 3)
       << "\n  smallest singular value of the scaled Φ_q: " << smin
       << (smin < 1e-6 ? " (singular: a toggle, dead centre or lock-up position)" : "")
       << "\n  Try: keep the drivers inside the reachable range, start the motion away from the singular "
@@ -417,6 +425,15 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
       diag.set_aside_residual = ScaledResidual(ws.phi, set_aside, aside_scales);
     }
     diag.condition = newton.ConditionEstimate();
+    {
+      const double u = std::numeric_limits<double>::epsilon() / 2, kappa = diag.condition;
+      diag.error_bound[0] = kappa * std::max(diag.residual, 4 * u);
+      double kk = 1;
+      for (int k = 1; k <= kMaxOrder; ++k) {
+        kk *= kappa;
+        diag.error_bound[k] = 8 * u * kk + kappa * diag.error_bound[0];
+      }
+    }
     diag.solve_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     UpdateAngleReferences(sys, &s);
     rep.steps.push_back(diag);

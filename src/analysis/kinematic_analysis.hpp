@@ -33,6 +33,14 @@ struct StepDiagnostics {
   double residual = 0;             // scaled, active equations
   double set_aside_residual = 0;   // scaled, redundant equations set aside
   double condition = 0;            // estimate of cond(Φ_q)
+  // Relative error bounds per derivative order (0 = position): with κ the condition
+  // estimate, r the scaled residual and u the unit round-off,
+  //   e_0 = κ·max(r, 4u),   e_k = 8u·κ^k + κ·e_0   (k ≥ 1):
+  // round-off of each back-solve is amplified by κ and enters the next order's
+  // right-hand side; the position error e_0 perturbs Φ_q itself, costing one more κ.
+  // Relative to the magnitude of q^(k) over the motion. Checked against closed forms
+  // near a dead centre in tests/extremes/assembly_test.cpp.
+  double error_bound[kMaxOrder + 1] = {0, 0, 0, 0, 0};
   double solve_seconds = 0;        // position + derivative solves of this step
   int substeps_refinements = 0;    // 1 when the step had to be refined into sub-steps
 };

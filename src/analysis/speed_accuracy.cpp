@@ -32,7 +32,7 @@ ReferenceTable RunForBench(const Model& model, const BenchSetting& s, AnalysisRe
   o.predictor_order = s.predictor;
   o.formulation = s.formulation;
   *report = RunKinematicAnalysis(m, o, [&](const SystemState& st, const StepDiagnostics& d) {
-    table.AddRow(st, d.t, d.iterations, d.residual);
+    table.AddRow(st, d.t, d.iterations, d.residual, d.condition, d.error_bound);
   });
   ReferenceTable ref;
   for (size_t c = 0; c < table.header().size(); ++c) {
@@ -81,7 +81,8 @@ int OrderOf(const std::string& name) {
 void Compare(const ReferenceTable& run, const ReferenceTable& ref, double* err) {
   double scale[4] = {0, 0, 0, 0}, diff[4] = {0, 0, 0, 0};
   for (const auto& [name, values] : run.columns) {
-    if (name == "newton_iterations" || name == "residual" || name.find(".e") != std::string::npos ||
+    if (name == "newton_iterations" || name == "residual" || name == "condition" || name.rfind("error_bound", 0) == 0 ||
+        name.find(".e") != std::string::npos ||
         name.find(".w") != std::string::npos)
       continue;
     const auto it = ref.columns.find(name);

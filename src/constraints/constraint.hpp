@@ -64,6 +64,9 @@ class Constraint {
   /// 3DRDD 2; DOT_1, GRRD 0. Residuals are divided by L^power (L the characteristic
   /// length) so that every tolerance is relative to the mechanism's size.
   virtual int LengthPower() const = 0;
+  /// How far equation `row` is from closing, in metres (LengthPower ≥ 1) or radians
+  /// (power 0): Φ itself, except for squared distances, where it is |d| − L.
+  virtual double Misfit(const ConstraintInput&, int /*row*/, double phi) const { return phi; }
   /// Short name of the family ("SPH", "DOT_1", ...), and of equation `row`.
   virtual const char* family() const = 0;
 

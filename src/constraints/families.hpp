@@ -7,6 +7,9 @@
 // BodyKinematics). For k = 2, 3, 4 this reproduces the printed γ, η, σ of §3.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "constraints/constraint.hpp"
 
 namespace mechkin {
@@ -43,6 +46,10 @@ class DistanceConstraint : public Constraint {
   const char* family() const override { return length_ > 0 ? "SPH_SPH" : "3DRDD"; }
   int LengthPower() const override { return 2; }
   bool driven() const { return !(length_ > 0); }
+  double Misfit(const ConstraintInput& in, int, double phi) const override {
+    const double L = driven() ? in.f.c[0] : length_;
+    return std::sqrt(std::max(phi + L * L, 0.0)) - L;  // |d| − L
+  }
 
  private:
   Vec3 s_i_, s_j_;

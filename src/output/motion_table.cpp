@@ -77,9 +77,12 @@ MotionTable::MotionTable(const Model& model, const TableOptions& options)
       throw std::invalid_argument("--outputs: no output named '" + sel + "'");
   header_.push_back("newton_iterations");
   header_.push_back("residual");
+  header_.push_back("condition");
+  for (int k = 0; k <= order; ++k) header_.push_back(std::string("error_bound") + kSuffix[k]);
 }
 
-void MotionTable::AddRow(const SystemState& s, double t, int iterations, double residual) {
+void MotionTable::AddRow(const SystemState& s, double t, int iterations, double residual, double condition,
+                         const double* error_bound) {
   const int order = options_.order;
   std::vector<double> row;
   row.reserve(header_.size());
@@ -140,6 +143,8 @@ void MotionTable::AddRow(const SystemState& s, double t, int iterations, double 
   }
   row.push_back(iterations);
   row.push_back(residual);
+  row.push_back(condition);
+  for (int k = 0; k <= order; ++k) row.push_back(error_bound ? error_bound[k] : 0.0);
   rows_.push_back(std::move(row));
 }
 

@@ -1,7 +1,8 @@
 // The motion table: one row per time step, columns named exactly as in
 // format-v1 "Motion table columns" (`t [s]`, `crank.x [mm]`, `crank.e0`,
 // `crank.wx [deg/s]`, `piston.x_tt [mm/s^2]`, `crank_angle_ttt [deg/s^3]`, ...),
-// followed by the step diagnostics `newton_iterations` and `residual`.
+// followed by the step diagnostics `newton_iterations`, `residual`, `condition`
+// and `error_bound`, `error_bound_t`, … (relative error bounds per order).
 #pragma once
 
 #include <ostream>
@@ -27,7 +28,8 @@ class MotionTable {
   const std::vector<std::string>& header() const { return header_; }
   const std::vector<std::vector<double>>& rows() const { return rows_; }
   /// Appends the row of state `s` (values converted to the table's units).
-  void AddRow(const SystemState& s, double t, int iterations, double residual);
+  void AddRow(const SystemState& s, double t, int iterations, double residual, double condition = 0,
+              const double* error_bound = nullptr);
 
   void WriteCsv(std::ostream& out, bool partial, const std::string& note) const;
   void WriteJson(std::ostream& out, bool partial, const std::string& note) const;

@@ -187,7 +187,9 @@ TEST(Formulations, OmegaAndPGiveTheSameTable) {
     for (const auto& [name, values] : a.col)
       for (double v : values) scale[kind(name)] = std::max(scale[kind(name)], std::abs(v));
     for (const auto& [name, values] : a.col) {
-      if (name == "newton_iterations" || name == "residual" || name == "t") continue;
+      if (name == "newton_iterations" || name == "residual" || name == "t" || name == "condition" ||
+          name.rfind("error_bound", 0) == 0)
+        continue;
       double err = 0;
       for (size_t k = 0; k < values.size(); ++k) err = std::max(err, std::abs(b[name][k] - values[k]));
       EXPECT_LT(err / std::max(scale[kind(name)], 1e-6), 1e-10) << file << " " << name;  // floor: zero columns agree to 1e-16 SI
@@ -209,7 +211,9 @@ TEST(Solvers, CeresAndNewtonAgree) {
     double cond = 0;
     for (const auto& st : a.report.steps) cond = std::max(cond, st.condition);
     for (const auto& [name, values] : a.col) {
-      if (name == "newton_iterations" || name == "residual" || name.find(".e") != std::string::npos) continue;
+      if (name == "newton_iterations" || name == "residual" || name == "condition" || name.rfind("error_bound", 0) == 0 ||
+          name.find(".e") != std::string::npos)
+        continue;
       if (name.find("_t") != std::string::npos || name.find(".w") != std::string::npos) continue;  // positions only
       const bool angle = name.find("angle") != std::string::npos;
       double err = 0;

@@ -51,7 +51,7 @@ TEST(RunCommand, OrderAndSelectionLimitTheColumns) {
   ASSERT_EQ(RunRun(o, out, err), 0);
   EXPECT_EQ(out.str().substr(0, out.str().find('\n')),
             "t [s],piston.x [m],piston.x_t [m/s],piston.y [m],piston.y_t [m/s],piston.z [m],piston.z_t [m/s],"
-            "newton_iterations,residual");
+            "newton_iterations,residual,condition,error_bound,error_bound_t");
 }
 
 TEST(RunCommand, JsonTableAndStatsLine) {

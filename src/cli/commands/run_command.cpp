@@ -70,7 +70,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   const int total = model.analysis ? model.analysis->steps + 1 : 0;
   int done = 0;
   const AnalysisReport rep = RunKinematicAnalysis(model, aopt, [&](const SystemState& s, const StepDiagnostics& d) {
-    table->AddRow(s, d.t, d.iterations, d.residual);
+    table->AddRow(s, d.t, d.iterations, d.residual, d.condition, d.error_bound);
     ++done;
     if (tty) {
       const auto now = std::chrono::steady_clock::now();
@@ -83,6 +83,23 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   });
   if (tty && std::chrono::steady_clock::now() - start > std::chrono::seconds(1)) err << "\r" << std::string(40, ' ') << "\r";
   for (const auto& sa : rep.set_aside) err << "mechkin run: redundant equation set aside: " << sa << "\n";
+  // Loud, not quiet: a row whose error bound (from the condition estimate) exceeds
+  // 1e-4 for some derivative order (the 4th digit may be wrong) is named on stderr.
+  {
+    static const char* kOrderName[] = {"position", "velocity", "acceleration", "jerk", "snap"};
+    for (int k = 0; k <= o.order; ++k) {
+      const StepDiagnostics* first = nullptr;
+      double worst = 0;
+      for (const auto& d : rep.steps) {
+        if (d.error_bound[k] > 1e-4 && !first) first = &d;
+        worst = std::max(worst, d.error_bound[k]);
+      }
+      if (first)
+        err << "mechkin run: warning: " << kOrderName[k] << " is ill-conditioned from t = " << first->t
+            << " s (condition estimate " << first->condition << "; relative error bound up to " << worst
+            << "): a singular position is near; see the error_bound columns\n";
+    }
+  }
   if (!rep.complete) err << "mechkin run: " << o.file << ": " << rep.message << "\n";
   if (o.stats && !rep.steps.empty()) {
     std::vector<double> us;
