@@ -17,5 +17,10 @@ common=("$here"/src/model/*.cpp "$here"/src/math/*.cpp)
 clang++ "${flags[@]}" "$here/tools/fuzz/fuzz_loader.cpp" "${common[@]}" -o "$out/fuzz_loader"
 clang++ "${flags[@]}" "$here/tools/fuzz/fuzz_expression.cpp" "${common[@]}" -o "$out/fuzz_expression"
 cd "$out"
-./fuzz_loader -max_total_time="$secs" -max_len=65536 -print_final_stats=1 corpus-loader 2>&1 | tail -12
-./fuzz_expression -max_total_time="$secs" -max_len=256 -print_final_stats=1 corpus-expression 2>&1 | tail -12
+# A crash makes libFuzzer exit non-zero (and write crash-*): the script then fails.
+./fuzz_loader -max_total_time="$secs" -max_len=65536 -print_final_stats=1 corpus-loader > loader.log 2>&1 ||
+  { tail -40 loader.log; exit 1; }
+grep -E "^Done|stat::number_of_executed_units" loader.log
+./fuzz_expression -max_total_time="$secs" -max_len=256 -print_final_stats=1 corpus-expression > expression.log 2>&1 ||
+  { tail -40 expression.log; exit 1; }
+grep -E "^Done|stat::number_of_executed_units" expression.log

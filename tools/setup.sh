@@ -6,7 +6,8 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-build}"; shift || true
 pkgs=(g++ cmake make libeigen3-dev libceres-dev nlohmann-json3-dev libcli11-dev
-      libgtest-dev libgmock-dev libbenchmark-dev python3 python3-jsonschema)
+      libgtest-dev libgmock-dev libbenchmark-dev python3 python3-jsonschema
+      clang libclang-rt-14-dev valgrind)
 SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
 $SUDO apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${pkgs[@]}" >/dev/null

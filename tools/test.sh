@@ -7,6 +7,8 @@ here="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$here"
 bash tools/setup.sh build
 ctest --test-dir build --output-on-failure -j"$(nproc)"
+echo "== short fuzz run (libFuzzer, 20 s per target) =="
+bash tools/fuzz.sh 20
 echo "== sanitizer build (ASan + UBSan) =="
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMECHKIN_SANITIZE=ON -DMECHKIN_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build-asan -j"$(nproc)"
