@@ -1,0 +1,71 @@
+// Factorization and whole-step cost of the driven analysis (issue: speed).
+// A full step = position (Newton from the Taylor predictor), velocity,
+// acceleration and jerk, tolerance 1e-10 of the mechanism size.
+//   ./build/tools/bench_step                       (slider-crank, chains N = 1, 10, 100, 1000)
+// Chain files are generated with tools/make_chain.py into the build folder.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+
+#include "analysis/kinematic_analysis.hpp"
+#include "model/loader.hpp"
+#include "solvers/newton.hpp"
+
+namespace mechkin {
+namespace {
+
+Model LoadOrDie(const std::string& path) {
+  LoadResult r = LoadMechanismFile(path);
+  if (!r.ok()) {
+    std::fprintf(stderr, "cannot load %s\n", path.c_str());
+    std::exit(1);
+  }
+  return std::move(*r.model);
+}
+
+std::string ChainFile(int n) {
+  const std::string path = "chain-" + std::to_string(n) + ".json";
+  const std::string cmd = "python3 " + std::string(MECHKIN_SOURCE_DIR) + "/tools/make_chain.py " + std::to_string(n) + " " + path;
+  if (std::system(cmd.c_str()) != 0) std::exit(1);
+  return path;
+}
+
+Model ForFile(const benchmark::State& st, const std::string& which) {
+  if (which == "slider") return LoadOrDie(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/spatial-slider-crank.json");
+  return LoadOrDie(ChainFile(static_cast<int>(st.range(0))));
+}
+
+// Whole step: the analysis over `steps` rows, reported per row.
+void WholeStep(benchmark::State& st, const std::string& which) {
+  Model m = ForFile(st, which);
+  const int steps = which == "slider" ? 360 : 40;
+  m.analysis = Analysis{0, which == "slider" ? 1.0 : 0.4, steps};
+  AnalysisOptions o;
+  o.order = 3;
+  int rows = 0;
+  for (auto _ : st) {
+    const AnalysisReport rep = RunKinematicAnalysis(m, o, [&](const SystemState&, const StepDiagnostics&) { ++rows; });
+    if (!rep.complete) st.SkipWithError(rep.message.c_str());
+  }
+  // Time per step (the one-off assembly is amortized over the rows).
+  st.SetItemsProcessed(rows);
+  st.counters["s_per_step"] = benchmark::Counter(static_cast<double>(rows), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void Factorization(benchmark::State& st, const std::string& which) {
+  const Model m = ForFile(st, which);
+  const ConstraintSystem sys(m, true);
+  SystemState s(sys);
+  NewtonSolver newton(sys, AllRows(sys));
+  for (auto _ : st) benchmark::DoNotOptimize(newton.Factorize(s));
+}
+
+BENCHMARK_CAPTURE(Factorization, slider_crank, std::string("slider"));
+BENCHMARK_CAPTURE(Factorization, chain, std::string("chain"))->Arg(1)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(WholeStep, slider_crank, std::string("slider"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(WholeStep, chain, std::string("chain"))->Arg(1)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace mechkin
+
+BENCHMARK_MAIN();
