@@ -7,7 +7,10 @@
 
 #include <cstdlib>
 
+#include <filesystem>
+
 #include "analysis/kinematic_analysis.hpp"
+#include "mobility/mobility.hpp"
 #include "model/loader.hpp"
 #include "solvers/newton.hpp"
 
@@ -59,6 +62,24 @@ void Factorization(benchmark::State& st, const std::string& which) {
   NewtonSolver newton(sys, AllRows(sys));
   for (auto _ : st) benchmark::DoNotOptimize(newton.Factorize(s));
 }
+
+// The whole `check` report (load + rank mobility, redundancy, idle freedoms, driving
+// status, suggestions) of every bundled mechanism: no time analysis needed.
+void CheckReport(benchmark::State& st, const std::string& file) {
+  for (auto _ : st) {
+    const Model m = LoadOrDie(file);
+    benchmark::DoNotOptimize(CalcMobility(m).mobility);
+  }
+}
+
+int RegisterCheckBenchmarks() {
+  for (const auto& e : std::filesystem::directory_iterator(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms"))
+    if (e.path().extension() == ".json")
+      benchmark::RegisterBenchmark(("CheckReport/" + e.path().stem().string()).c_str(), CheckReport, e.path().string())
+          ->Unit(benchmark::kMillisecond);
+  return 0;
+}
+const int kRegistered = RegisterCheckBenchmarks();
 
 BENCHMARK_CAPTURE(Factorization, slider_crank, std::string("slider"));
 BENCHMARK_CAPTURE(Factorization, chain, std::string("chain"))->Arg(1)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);

@@ -153,7 +153,8 @@ MobilityReport CalcMobility(const Model& model) {
     std::mt19937 rng(12345);
     std::normal_distribution<double> nd;
     const double L = model.characteristic_length;
-    for (int trial = 0; trial < 2; ++trial) {
+    const int trials = 6 * n <= 300 ? 2 : 1;  // each trial is a dense re-assembly
+    for (int trial = 0; trial < trials; ++trial) {
       SystemState moved = state;
       Eigen::VectorXd c(info.null_basis.cols());
       for (int k = 0; k < c.size(); ++k) c[k] = nd(rng);
@@ -176,8 +177,9 @@ MobilityReport CalcMobility(const Model& model) {
   rep.redundant = joints.num_rows() - info.rank;
 
   // Name the redundant equations: greedy in file order, later equations are the redundant ones.
+  // (Skipped when the SVD already shows full row rank: the greedy pass is O(m²n).)
   std::vector<int> dependent;
-  const std::vector<int> kept = IndependentRows(J, 1e-7, &dependent);
+  const std::vector<int> kept = rep.redundant > 0 ? IndependentRows(J, 1e-7, &dependent) : AllRows(joints);
   for (int row : dependent) {
     RedundantEquation eq;
     eq.row = row;
@@ -202,7 +204,7 @@ MobilityReport CalcMobility(const Model& model) {
   const RankInfo finfo = CalcRank(Jf);
   rep.dof_after_drivers = 6 * n - finfo.rank;
   std::vector<int> fdep;
-  IndependentRows(Jf, 1e-7, &fdep);
+  if (finfo.rank < full.num_rows()) IndependentRows(Jf, 1e-7, &fdep);
   std::set<std::string> conflicting;
   for (int row : fdep)
     if (row >= full.num_joint_rows()) conflicting.insert(full.SourceName(row));
