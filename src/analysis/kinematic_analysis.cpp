@@ -330,7 +330,10 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     AimRotationDrivers(sys, &s);
     if (dt > 0 && pred > 0) PredictPose(dt, pred, &s);
     predicted.bodies = s.bodies;
-    last = options.solver == PositionSolver::Ceres ? SolvePositionCeres(sys, active, solve, &s)
+    last = options.solver == PositionSolver::Ceres
+               ? SolvePositionCeres(sys, active, solve, &s,
+                                    options.ceres_normalization_residual ? CeresUnitQuaternion::NormalizationResidual
+                                                                         : CeresUnitQuaternion::Manifold)
                                                    : newton.Solve(solve, &s, reuse && options.modified_newton);
     if (!last.success || !newton.Factorize(s)) return Outcome::Failed;
     const double sign = newton.JacobianSign();

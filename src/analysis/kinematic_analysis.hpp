@@ -23,6 +23,7 @@ struct AnalysisOptions {
   int max_iterations = 25;
   int predictor_order = 3;             // Taylor predictor order (≤ order)
   bool modified_newton = true;         // reuse the previous step's factorization while it converges fast
+  bool ceres_normalization_residual = false;  // Ceres: pᵀp − 1 residuals instead of the manifold (measured worse)
   bool branch_guard = true;            // sub-step on a det Φ_q sign change or a far jump (off: plain Newton)
   bool IsValid(std::string* error) const;
 };

@@ -22,6 +22,7 @@ class EntryCost : public ceres::CostFunction {
   bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override {
     const Constraint& c = *sys_.entries()[entry_].constraint;
     BodyKinematics kin[2];
+    double inv_norm[2] = {1, 1};
     int block = 0;
     const BodyIndex bodies[2] = {c.body_i(), c.body_j()};
     for (int side = 0; side < 2; ++side) {
@@ -29,6 +30,7 @@ class EntryCost : public ceres::CostFunction {
       const Vec3 r(params[block][0], params[block][1], params[block][2]);
       const Vec4 p(params[block + 1][0], params[block + 1][1], params[block + 1][2], params[block + 1][3]);
       kin[side].SetPose(r, p.normalized());
+      inv_norm[side] = 1 / p.norm();
       block += 2;
     }
     const ConstraintInput in{bodies[0] == kGround ? GroundKinematics() : kin[0],
@@ -52,8 +54,10 @@ class EntryCost : public ceres::CostFunction {
         const int r = local_rows_[k];
         if (jacobians[block])
           for (int a = 0; a < 3; ++a) jacobians[block][3 * k + a] = Br(r, a) * scales_[k];
+        // Φ_p = 2Φ_π'G is the gradient of Φ(p/|p|) at unit p; at |p| ≠ 1 (normalization-
+        // residual variant) the gradient is Φ_p(p̂)/|p|, since Φ_p(p̂) p̂ = 0.
         if (jacobians[block + 1])
-          for (int a = 0; a < 4; ++a) jacobians[block + 1][4 * k + a] = Bp(r, a) * scales_[k];
+          for (int a = 0; a < 4; ++a) jacobians[block + 1][4 * k + a] = Bp(r, a) * scales_[k] * inv_norm[side];
       }
       block += 2;
     }
@@ -70,8 +74,20 @@ class EntryCost : public ceres::CostFunction {
 
 }  // namespace
 
+// pᵀp − 1 for one body (the normalization-residual variant).
+class NormalizationCost : public ceres::SizedCostFunction<1, 4> {
+ public:
+  bool Evaluate(double const* const* params, double* residual, double** jacobians) const override {
+    const double* p = params[0];
+    residual[0] = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1;
+    if (jacobians && jacobians[0])
+      for (int a = 0; a < 4; ++a) jacobians[0][a] = 2 * p[a];
+    return true;
+  }
+};
+
 SolveSummary SolvePositionCeres(const ConstraintSystem& sys, const std::vector<int>& rows, const SolveOptions& options,
-                                SystemState* s) {
+                                SystemState* s, CeresUnitQuaternion unit) {
   const int n = sys.num_bodies();
   std::vector<double> params(7 * n);
   for (int b = 0; b < n; ++b) {
@@ -101,8 +117,11 @@ SolveSummary SolvePositionCeres(const ConstraintSystem& sys, const std::vector<i
       }
     problem.AddResidualBlock(new EntryCost(sys, *s, static_cast<int>(e), entry_rows[e], entry_scales[e]), nullptr, blocks);
   }
-  for (int b = 0; b < n; ++b)
-    if (problem.HasParameterBlock(&params[7 * b + 3])) problem.SetManifold(&params[7 * b + 3], &quaternion);
+  for (int b = 0; b < n; ++b) {
+    if (!problem.HasParameterBlock(&params[7 * b + 3])) continue;
+    if (unit == CeresUnitQuaternion::Manifold) problem.SetManifold(&params[7 * b + 3], &quaternion);
+    else problem.AddResidualBlock(new NormalizationCost, nullptr, &params[7 * b + 3]);
+  }
   ceres::Solver::Options opt;
   opt.linear_solver_type = n > 40 ? ceres::SPARSE_NORMAL_CHOLESKY : ceres::DENSE_QR;
   opt.max_num_iterations = std::max(options.max_iterations, 50);
