@@ -82,6 +82,11 @@ void CalcPVersionJacobian(const Constraint& c, const ConstraintInput& in, const 
 /// correction −Σ Φ_π'k v_k (v3_k) of §1.7.
 void CalcPVersionRhs(const Constraint& c, const ConstraintInput& in, int k, double* rhs);
 
+/// m-th derivative of d_ij = r^P_j − r^P_i for body points s'_i, s'_j (m = 0: d itself).
+inline Vec3 RelativePointDerivative(const ConstraintInput& in, const Vec3& s_i, const Vec3& s_j, int m) {
+  return in.j.PointDerivative(s_j, m) - in.i.PointDerivative(s_i, m);
+}
+
 /// Continuous angle: atan2(s, c) shifted by whole turns to lie within π of `ref`.
 double UnwrapAngle(double s, double c, double ref);
 

@@ -3,21 +3,14 @@
 #include "constraints/families.hpp"
 
 namespace mechkin {
-namespace {
-// d^(m) for m < k in full, and the bias of d^(k).
-Vec3 D(const ConstraintInput& in, const Vec3& si, const Vec3& sj, int m) {
-  return in.j.PointDerivative(sj, m) - in.i.PointDerivative(si, m);
-}
-}  // namespace
-
 void DistanceConstraint::CalcPhi(const ConstraintInput& in, double* phi) const {
   const double L = driven() ? in.f.c[0] : length_;
-  *phi = D(in, s_i_, s_j_, 0).squaredNorm() - L * L;
+  *phi = RelativePointDerivative(in, s_i_, s_j_, 0).squaredNorm() - L * L;
 }
 
 // Φ_r = [−2dᵀ, 2dᵀ], Φ_π' = [2dᵀA_i s̃'_i, −2dᵀA_j s̃'_j]   (§3.2 table; §3.7: same for 3DRDD)
 void DistanceConstraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const {
-  const Vec3 d = D(in, s_i_, s_j_, 0);
+  const Vec3 d = RelativePointDerivative(in, s_i_, s_j_, 0);
   J->r_i.row(0) = -2 * d.transpose();
   J->r_j.row(0) = 2 * d.transpose();
   J->pi_i.row(0) = 2 * d.transpose() * in.i.A * Tilde(s_i_);
@@ -29,7 +22,7 @@ void DistanceConstraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks*
 // (§3.2); 3DRDD adds 2ff_t, 2f_t² + 2ff_tt, 6f_tf_tt + 2ff_ttt, 6f_tt² + 8f_tf_ttt + 2ff_tttt (§3.7).
 void DistanceConstraint::CalcRhs(const ConstraintInput& in, int k, double* rhs) const {
   Vec3 d[kMaxOrder];
-  for (int m = 0; m < k; ++m) d[m] = D(in, s_i_, s_j_, m);
+  for (int m = 0; m < k; ++m) d[m] = RelativePointDerivative(in, s_i_, s_j_, m);
   const Vec3 bias = in.j.PointBias(s_j_, k) - in.i.PointBias(s_i_, k);
   double s = 2 * d[0].dot(bias);
   for (int m = 1; m < k; ++m) s += kBinomial[k][m] * d[m].dot(d[k - m]);
@@ -41,7 +34,7 @@ void DistanceConstraint::CalcRhs(const ConstraintInput& in, int k, double* rhs) 
 // κ_T_j = −2λ[(A_jω̃'_j s̃'_j)ᵀd + (A_j s̃'_j)ᵀḋ]   (§3.2, compact form)
 void DistanceConstraint::CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const {
   const double l = *lambda;
-  const Vec3 d = D(in, s_i_, s_j_, 0), dd = D(in, s_i_, s_j_, 1);
+  const Vec3 d = RelativePointDerivative(in, s_i_, s_j_, 0), dd = RelativePointDerivative(in, s_i_, s_j_, 1);
   kappa->F_i = -2 * l * dd;
   kappa->F_j = 2 * l * dd;
   kappa->T_i = 2 * l * ((in.i.A * Tilde(in.i.w[0]) * Tilde(s_i_)).transpose() * d + (in.i.A * Tilde(s_i_)).transpose() * dd);

@@ -2,20 +2,14 @@
 #include "constraints/families.hpp"
 
 namespace mechkin {
-namespace {
-Vec3 D(const ConstraintInput& in, const Vec3& si, const Vec3& sj, int m) {
-  return in.j.PointDerivative(sj, m) - in.i.PointDerivative(si, m);
-}
-}  // namespace
-
 void Dot2Constraint::CalcPhi(const ConstraintInput& in, double* phi) const {
-  *phi = (in.i.A * a_i_).dot(D(in, s_i_, s_j_, 0));
+  *phi = (in.i.A * a_i_).dot(RelativePointDerivative(in, s_i_, s_j_, 0));
 }
 
 // Φ_r = [−a_iᵀ, a_iᵀ], Φ_π'_i = a'_iᵀ s̃'_i − dᵀA_i ã'_i, Φ_π'_j = −a_iᵀA_j s̃'_j   (§3.4 table)
 void Dot2Constraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const {
   const Vec3 ai = in.i.A * a_i_;
-  const Vec3 d = D(in, s_i_, s_j_, 0);
+  const Vec3 d = RelativePointDerivative(in, s_i_, s_j_, 0);
   J->r_i.row(0) = -ai.transpose();
   J->r_j.row(0) = ai.transpose();
   J->pi_i.row(0) = a_i_.transpose() * Tilde(s_i_) - d.transpose() * in.i.A * Tilde(a_i_);
@@ -27,8 +21,8 @@ void Dot2Constraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) 
 void Dot2Constraint::CalcRhs(const ConstraintInput& in, int k, double* rhs) const {
   const Vec3 ai = in.i.A * a_i_;
   const Vec3 bias_d = in.j.PointBias(s_j_, k) - in.i.PointBias(s_i_, k);
-  double s = in.i.VectorBias(a_i_, k).dot(D(in, s_i_, s_j_, 0)) + ai.dot(bias_d);
-  for (int m = 1; m < k; ++m) s += kBinomial[k][m] * in.i.VectorDerivative(a_i_, m).dot(D(in, s_i_, s_j_, k - m));
+  double s = in.i.VectorBias(a_i_, k).dot(RelativePointDerivative(in, s_i_, s_j_, 0)) + ai.dot(bias_d);
+  for (int m = 1; m < k; ++m) s += kBinomial[k][m] * in.i.VectorDerivative(a_i_, m).dot(RelativePointDerivative(in, s_i_, s_j_, k - m));
   *rhs = -s;
 }
 
@@ -36,7 +30,7 @@ void Dot2Constraint::CalcRhs(const ConstraintInput& in, int k, double* rhs) cons
 // κ_T_j = −λ[(A_j s̃'_j)ᵀA_iω̃'_i a'_i + (A_jω̃'_j s̃'_j)ᵀA_i a'_i]   (§3.4)
 void Dot2Constraint::CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const {
   const double l = *lambda;
-  const Vec3 d = D(in, s_i_, s_j_, 0), dd = D(in, s_i_, s_j_, 1);
+  const Vec3 d = RelativePointDerivative(in, s_i_, s_j_, 0), dd = RelativePointDerivative(in, s_i_, s_j_, 1);
   const Vec3 ai_dot = in.i.A * Tilde(in.i.w[0]) * a_i_;
   kappa->F_i = -l * ai_dot;
   kappa->F_j = l * ai_dot;

@@ -13,6 +13,11 @@
 namespace mechkin {
 namespace {
 
+nlohmann::json ReadTestData(const std::string& name) {
+  std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/tests/data/" + name);
+  return nlohmann::json::parse(f);
+}
+
 nlohmann::json ReadJson(const std::string& name) {
   std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/" + name);
   return nlohmann::json::parse(f);
@@ -110,16 +115,8 @@ TEST(NearSingular, DeadCentreApproachStaysWithinTheBound) {
   const double a = 0.020;
   for (double delta : {1e-3, 1e-6, 1e-9}) {
     const double theta_end = M_PI / 2 - delta, w = 2 * M_PI;
-    nlohmann::json j = {
-        {"mechkin", 1}, {"units", {{"length", "mm"}, {"angle", "deg"}}},
-        {"bodies", {{{"name", "crank"}, {"position", {10, 0, 0}}}, {{"name", "rod"}, {"position", {30, 0, 0}}},
-                    {{"name", "slider"}, {"position", {40, 0, 0}}}}},
-        {"joints", {{{"name", "A"}, {"type", "revolute"}, {"body1", "ground"}, {"body2", "crank"}, {"origin", {0, 0, 0}}, {"axis", {0, 0, 1}}},
-                    {{"name", "B"}, {"type", "revolute"}, {"body1", "crank"}, {"body2", "rod"}, {"origin", {20, 0, 0}}, {"axis", {0, 0, 1}}},
-                    {{"name", "C"}, {"type", "revolute"}, {"body1", "rod"}, {"body2", "slider"}, {"origin", {40, 0, 0}}, {"axis", {0, 0, 1}}},
-                    {{"name", "P"}, {"type", "prismatic"}, {"body1", "ground"}, {"body2", "slider"}, {"origin", {40, 0, 0}}, {"axis", {1, 0, 0}}}}},
-        {"drivers", {{{"name", "motor"}, {"type", "rotation"}, {"joint", "A"}, {"function", "360*t"}}}},
-        {"analysis", {{"start", 0}, {"end", theta_end / w}, {"steps", 45}}}};
+    nlohmann::json j = ReadTestData("slider-crank-equal-links.json");
+    j["analysis"] = {{"start", 0}, {"end", theta_end / w}, {"steps", 45}};
     AnalysisOptions o;
     o.order = 2;
     o.tolerance = 1e-13;

@@ -24,6 +24,11 @@ Model FromJson(const nlohmann::json& j) {
   return std::move(*r.model);
 }
 
+nlohmann::json ReadTestData(const std::string& name) {
+  std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/tests/data/" + name);
+  return nlohmann::json::parse(f);
+}
+
 nlohmann::json ReadJson(const std::string& name) {
   std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/" + name);
   return nlohmann::json::parse(f);
@@ -103,16 +108,7 @@ TEST(Mobility, TwoDriversOnOneJointConflict) {
 // crank pivot, is at crank angle 90° (cos θ* = 0 for zero offset). The run stops
 // there and reports it to better than 1e-6 rad, with the higher mobility.
 TEST(Mobility, DeadCentreIsLocatedAtTheClosedFormAngle) {
-  const nlohmann::json j = {
-      {"mechkin", 1}, {"units", {{"length", "mm"}, {"angle", "deg"}}},
-      {"bodies", {{{"name", "crank"}, {"position", {10, 0, 0}}}, {{"name", "rod"}, {"position", {30, 0, 0}}},
-                  {{"name", "slider"}, {"position", {40, 0, 0}}}}},
-      {"joints", {{{"name", "A"}, {"type", "revolute"}, {"body1", "ground"}, {"body2", "crank"}, {"origin", {0, 0, 0}}, {"axis", {0, 0, 1}}},
-                  {{"name", "B"}, {"type", "revolute"}, {"body1", "crank"}, {"body2", "rod"}, {"origin", {20, 0, 0}}, {"axis", {0, 0, 1}}},
-                  {{"name", "C"}, {"type", "revolute"}, {"body1", "rod"}, {"body2", "slider"}, {"origin", {40, 0, 0}}, {"axis", {0, 0, 1}}},
-                  {{"name", "P"}, {"type", "prismatic"}, {"body1", "ground"}, {"body2", "slider"}, {"origin", {40, 0, 0}}, {"axis", {1, 0, 0}}}}},
-      {"drivers", {{{"name", "motor"}, {"type", "rotation"}, {"joint", "A"}, {"function", "360*t"}}}},
-      {"analysis", {{"start", 0}, {"end", 0.5}, {"steps", 37}}}};
+  const nlohmann::json j = ReadTestData("slider-crank-equal-links.json");
   const Model m = FromJson(j);
   int rows = 0;
   const AnalysisReport rep = RunKinematicAnalysis(m, AnalysisOptions{}, [&](const SystemState&, const StepDiagnostics&) { ++rows; });
