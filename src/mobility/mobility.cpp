@@ -301,7 +301,6 @@ MobilityReport CalcMobility(const Model& model) {
 }
 
 nlohmann::json MobilityReportJson(const Model& model, const MobilityReport& r) {
-  (void)model;
   nlohmann::json j;
   j["assembled"] = r.assembled;
   j["assembly"] = r.assembly_message;
@@ -319,7 +318,10 @@ nlohmann::json MobilityReportJson(const Model& model, const MobilityReport& r) {
   j["idle"] = nlohmann::json::array();
   for (const auto& f : r.idle)
     j["idle"].push_back({{"bodies", f.body}, {"axis", {f.axis.x(), f.axis.y(), f.axis.z()}}, {"description", f.description}});
-  j["dof_after_drivers"] = r.dof_after_drivers;
+  // format-v1: DOF after drivers = mobility − number of drivers (negative: over-driven).
+  j["dof_after_drivers"] = r.mobility - static_cast<int>(model.drivers.size());
+  // Rank of joints + drivers together: the freedoms actually left (never negative).
+  j["free_after_drivers"] = r.dof_after_drivers;
   j["driven"] = r.driving_status;
   j["conflicting_drivers"] = r.conflicting_drivers;
   j["remaining_freedoms"] = r.remaining_freedoms;
@@ -352,7 +354,8 @@ void PrintMobilityText(const nlohmann::json& m, std::ostream& out) {
   for (const auto& s : m["suggestions"]) out << "  suggestion: " << s.get<std::string>() << "\n";
   out << "  idle freedoms: " << m["idle"].size() << "\n";
   for (const auto& f : m["idle"]) out << "    - " << f["description"].get<std::string>() << "\n";
-  out << "  DOF after drivers: " << m["dof_after_drivers"].get<int>() << " — driven: " << m["driven"].get<std::string>();
+  out << "  DOF after drivers: " << m["dof_after_drivers"].get<int>() << " (mobility − drivers; freedoms left by rank: "
+      << m["free_after_drivers"].get<int>() << ") — driven: " << m["driven"].get<std::string>();
   if (!m["conflicting_drivers"].empty()) {
     out << " (conflicting drivers: ";
     for (size_t k = 0; k < m["conflicting_drivers"].size(); ++k) out << (k ? ", " : "") << m["conflicting_drivers"][k].get<std::string>();

@@ -102,6 +102,9 @@ TEST(Mobility, TwoDriversOnOneJointConflict) {
   const MobilityReport r = CalcMobility(FromJson(j));
   EXPECT_EQ(r.driving_status, "over");
   EXPECT_EQ(r.conflicting_drivers, (std::vector<std::string>{"second"}));
+  // format-v1: DOF after drivers = mobility − drivers = 1 − 2, negative when over-driven.
+  const Model m = FromJson(j);
+  EXPECT_EQ(MobilityReportJson(m, r)["dof_after_drivers"].get<int>(), -1);
 }
 
 // Slider-crank with crank = rod: the dead centre, where the slider reaches the
