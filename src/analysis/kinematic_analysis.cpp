@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mobility/mobility.hpp"
+#include "solvers/block_solver.hpp"
 #include "solvers/ceres_position.hpp"
 #include "solvers/newton.hpp"
 
@@ -215,6 +216,25 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     return rep;
   }
   NewtonSolver newton(sys, active);
+  // Block-triangular structure (once per model), and the block path when the
+  // selection needs only part of the mechanism.
+  BlockStructure blocks;
+  std::unique_ptr<BlockSolver> block_solver;
+  if (FindBlockStructure(newton.jacobian(), &blocks)) {
+    rep.blocks = rep.blocks_solved = blocks.size();
+    if (!options.needed_bodies.empty() && options.formulation == Formulation::Omega &&
+        options.solver == PositionSolver::Newton) {
+      std::vector<int> cols;
+      for (int b : options.needed_bodies)
+        for (int q = 0; q < 6; ++q) cols.push_back(6 * b + q);
+      const std::vector<char> needed = NeededBlocks(blocks, cols);
+      const int count = static_cast<int>(std::count(needed.begin(), needed.end(), 1));
+      if (count < blocks.size() || options.needed_bodies[0] < 0) {
+        block_solver = std::make_unique<BlockSolver>(sys, active, blocks, needed);
+        rep.blocks_solved = count;
+      }
+    }
+  }
   std::unique_ptr<SparseJacobian> jac_p;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_p;
   if (options.formulation == Formulation::P && options.order > 0) {
@@ -273,6 +293,10 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
 
   // Derivative solves at the current pose: one factorization, `order` back-solves.
   auto derivatives = [&]() {
+    if (block_solver) {
+      block_solver->Derivatives(order, &s);
+      return;
+    }
     for (auto& b : s.bodies) {
       for (int k = 1; k <= kMaxOrder; ++k) b.r[k].setZero();
       for (int k = 0; k < kMaxOrder; ++k) b.w[k].setZero();
@@ -330,13 +354,18 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     AimRotationDrivers(sys, &s);
     if (dt > 0 && pred > 0) PredictPose(dt, pred, &s);
     predicted.bodies = s.bodies;
-    last = options.solver == PositionSolver::Ceres
-               ? SolvePositionCeres(sys, active, solve, &s,
-                                    options.ceres_normalization_residual ? CeresUnitQuaternion::NormalizationResidual
-                                                                         : CeresUnitQuaternion::Manifold)
-                                                   : newton.Solve(solve, &s, reuse && options.modified_newton);
-    if (!last.success || !newton.Factorize(s)) return Outcome::Failed;
-    const double sign = newton.JacobianSign();
+    if (block_solver) {
+      last = block_solver->Solve(solve, &s);
+      if (!last.success || !block_solver->Factorize(s)) return Outcome::Failed;
+    } else {
+      last = options.solver == PositionSolver::Ceres
+                 ? SolvePositionCeres(sys, active, solve, &s,
+                                      options.ceres_normalization_residual ? CeresUnitQuaternion::NormalizationResidual
+                                                                           : CeresUnitQuaternion::Manifold)
+                 : newton.Solve(solve, &s, reuse && options.modified_newton);
+      if (!last.success || !newton.Factorize(s)) return Outcome::Failed;
+    }
+    const double sign = block_solver ? block_solver->Sign() : newton.JacobianSign();
     if (options.branch_guard) {
       if (have_sign && sign != prev_sign) return Outcome::Suspect;
       if (dt > 0 && distance(predicted, s) > 0.1) return Outcome::Suspect;
@@ -427,7 +456,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
       CalcPhi(sys, s, &ws.phi);
       diag.set_aside_residual = ScaledResidual(ws.phi, set_aside, aside_scales);
     }
-    diag.condition = newton.ConditionEstimate();
+    diag.condition = block_solver ? block_solver->ConditionEstimate() : newton.ConditionEstimate();
     {
       const double u = std::numeric_limits<double>::epsilon() / 2, kappa = diag.condition;
       diag.error_bound[0] = kappa * std::max(diag.residual, 4 * u);

@@ -24,7 +24,11 @@ struct AnalysisOptions {
   int predictor_order = 3;             // Taylor predictor order (≤ order)
   bool modified_newton = true;         // reuse the previous step's factorization while it converges fast
   bool ceres_normalization_residual = false;  // Ceres: pᵀp − 1 residuals instead of the manifold (measured worse)
-  bool branch_guard = true;            // sub-step on a det Φ_q sign change or a far jump (off: plain Newton)
+  bool branch_guard = true;
+  // Bodies whose motion is asked for (table selection); empty = all. When it is a
+  // strict subset, the position and derivative solves run block by block along the
+  // block-triangular structure and skip the blocks nothing requested depends on.
+  std::vector<int> needed_bodies;            // sub-step on a det Φ_q sign change or a far jump (off: plain Newton)
   bool IsValid(std::string* error) const;
 };
 
@@ -61,6 +65,8 @@ struct AnalysisReport {
   std::vector<std::string> set_aside;     // redundant equations, by name
   std::vector<StepDiagnostics> steps;
   int assembly_iterations = 0;
+  int blocks = 0;          // diagonal blocks of the block-triangular form
+  int blocks_solved = 0;   // of those, solved (fewer when the table selection allows)
 };
 
 /// Called after each solved step with the state (pose and derivatives up to the
