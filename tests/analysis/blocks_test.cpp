@@ -15,8 +15,10 @@
 namespace mechkin {
 namespace {
 
+// Each test writes its own file: ctest runs tests in parallel.
 Model Chain(int n) {
-  const std::string path = ::testing::TempDir() + "/chain-" + std::to_string(n) + ".json";
+  const std::string path = ::testing::TempDir() + "/chain-" + std::to_string(n) + "-" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".json";
   const std::string cmd = "python3 " + std::string(MECHKIN_SOURCE_DIR) + "/tools/make_chain.py " + std::to_string(n) + " " + path;
   EXPECT_EQ(std::system(cmd.c_str()), 0);
   LoadResult r = LoadMechanismFile(path);
