@@ -40,6 +40,7 @@ BlockSolver::BlockSolver(const ConstraintSystem& sys, const std::vector<int>& ac
     b.rhs.resize(nb);
     b.x.resize(nb);
     b.cond_x = Eigen::VectorXd::Ones(nb).normalized();
+    b.cond_y.resize(nb);
     blocks_.push_back(std::move(b));
   }
   solved_ = static_cast<int>(blocks_.size());
@@ -184,11 +185,10 @@ double BlockSolver::Sign() const {
 double BlockSolver::ConditionEstimate() {
   double worst = 0;
   for (Block& b : blocks_) {
-    Eigen::VectorXd y;
-    b.solver.Solve(b.cond_x, &y);
-    const double inv = y.norm();
+    b.solver.Solve(b.cond_x, &b.cond_y);
+    const double inv = b.cond_y.norm();
     if (!(inv > 0) || !std::isfinite(inv)) return std::numeric_limits<double>::infinity();
-    b.cond_x = y / inv;
+    b.cond_x = b.cond_y / inv;
     worst = std::max(worst, b.J.norm() * inv);
   }
   return worst;

@@ -43,7 +43,7 @@ class BlockSolver {
     Eigen::MatrixXd coupling;                       // J(rows, all columns of the entries' bodies)
     std::vector<int> coupling_cols;                 // the global columns of `coupling`
     SmallLU solver;
-    Eigen::VectorXd rhs, x, cond_x;
+    Eigen::VectorXd rhs, x, cond_x, cond_y;
   };
   void FillBlock(Block& b, const SystemState& s, bool coupling);
   double BlockResidual(Block& b, const SystemState& s);
