@@ -160,6 +160,23 @@ SingularPosition LocateSingularity(const ConstraintSystem& sys, NewtonSolver* ne
 
 }  // namespace
 
+StepStatistics SummarizeSteps(const std::vector<StepDiagnostics>& steps) {
+  StepStatistics st;
+  if (steps.empty()) return st;
+  std::vector<double> us;
+  us.reserve(steps.size());
+  for (const auto& d : steps) {
+    us.push_back(d.solve_seconds * 1e6);
+    st.mean_iterations += d.iterations;
+    st.max_residual = std::max(st.max_residual, d.residual);
+    st.max_set_aside_residual = std::max(st.max_set_aside_residual, d.set_aside_residual);
+  }
+  std::nth_element(us.begin(), us.begin() + us.size() / 2, us.end());
+  st.median_us = us[us.size() / 2];
+  st.mean_iterations /= steps.size();
+  return st;
+}
+
 AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& options, const StepCallback& on_step) {
   AnalysisReport rep;
   std::string why;

@@ -69,6 +69,13 @@ struct AnalysisReport {
   int blocks_solved = 0;   // of those, solved (fewer when the table selection allows)
 };
 
+/// Per-step statistics of a run: the median solve time (µs), the mean Newton
+/// iterations and the largest residuals (used by `run --stats` and `bench`).
+struct StepStatistics {
+  double median_us = 0, mean_iterations = 0, max_residual = 0, max_set_aside_residual = 0;
+};
+StepStatistics SummarizeSteps(const std::vector<StepDiagnostics>& steps);
+
 /// Called after each solved step with the state (pose and derivatives up to the
 /// order) and the step's diagnostics.
 using StepCallback = std::function<void(const SystemState&, const StepDiagnostics&)>;

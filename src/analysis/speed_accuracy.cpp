@@ -135,17 +135,10 @@ std::vector<BenchResult> RunBench(const Model& model, const std::vector<BenchSet
       const ReferenceTable table = RunForBench(model, s, &report);
       r.complete = report.complete;
       if (!report.complete || report.steps.empty()) break;
-      std::vector<double> us;
-      double iters = 0, res = 0;
-      for (const auto& d : report.steps) {
-        us.push_back(d.solve_seconds * 1e6);
-        iters += d.iterations;
-        res = std::max(res, d.residual);
-      }
-      std::nth_element(us.begin(), us.begin() + us.size() / 2, us.end());
-      medians.push_back(us[us.size() / 2]);
-      r.iterations = iters / report.steps.size();
-      r.residual = res;
+      const StepStatistics st = SummarizeSteps(report.steps);
+      medians.push_back(st.median_us);
+      r.iterations = st.mean_iterations;
+      r.residual = st.max_residual;
       if (rep == 0) Compare(table, reference, r.error);
     }
     if (r.complete && !medians.empty()) {

@@ -21,7 +21,6 @@ NewtonSolver::NewtonSolver(const ConstraintSystem& sys, std::vector<int> rows)
 
 bool NewtonSolver::Factorize(const SystemState& s) {
   jac_.Fill(sys_, s);
-  ++factorizations_;
   if (dense_) {
     dense_J_ = jac_.matrix();
     factorized_ = dense_lu_.Compute(&dense_J_);

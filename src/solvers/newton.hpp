@@ -54,12 +54,8 @@ class NewtonSolver {
   Eigen::MatrixXd dense_J_;
   SmallLU dense_lu_;
   bool factorized_ = false;
-  int factorizations_ = 0;
   Eigen::VectorXd phi_, rhs_, dq_, cond_x_, cond_y_;
 
- public:
-  /// Numeric factorizations so far (for --stats and the benchmarks).
-  int factorizations() const { return factorizations_; }
 };
 
 }  // namespace mechkin

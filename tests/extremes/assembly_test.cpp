@@ -8,20 +8,14 @@
 
 #include "analysis/kinematic_analysis.hpp"
 #include "model/loader.hpp"
+#include "../test_files.hpp"
 #include "output/motion_table.hpp"
 
 namespace mechkin {
 namespace {
 
-nlohmann::json ReadTestData(const std::string& name) {
-  std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/tests/data/" + name);
-  return nlohmann::json::parse(f);
-}
-
-nlohmann::json ReadJson(const std::string& name) {
-  std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/" + name);
-  return nlohmann::json::parse(f);
-}
+using testing_files::ReadTestData;
+using testing_files::ReadJson;
 
 struct Rows { AnalysisReport rep; std::vector<std::string> header; std::vector<std::vector<double>> rows; };
 

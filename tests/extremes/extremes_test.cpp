@@ -8,23 +8,16 @@
 
 #include "analysis/kinematic_analysis.hpp"
 #include "model/loader.hpp"
+#include "../test_files.hpp"
 #include "output/motion_table.hpp"
 
 namespace mechkin {
 namespace {
 
+using testing_files::ReadJson;
+using testing_files::FromJson;
+
 using Columns = std::map<std::string, std::vector<double>>;
-
-nlohmann::json ReadJson(const std::string& name) {
-  std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/" + name);
-  return nlohmann::json::parse(f);
-}
-
-Model FromJson(const nlohmann::json& j) {
-  LoadResult r = LoadMechanismText(j.dump(), "inline");
-  EXPECT_TRUE(r.ok()) << (r.errors.empty() ? "" : r.errors[0].ToString());
-  return std::move(*r.model);
-}
 
 Columns RunColumns(const Model& m, AnalysisReport* rep, int order = 3) {
   TableOptions topt;

@@ -8,30 +8,19 @@
 #include "mobility/grubler.hpp"
 #include "mobility/mobility.hpp"
 #include "model/loader.hpp"
+#include "../test_files.hpp"
 
 namespace mechkin {
 namespace {
+
+using testing_files::ReadTestData;
+using testing_files::ReadJson;
+using testing_files::FromJson;
 
 Model Load(const std::string& name) {
   LoadResult r = LoadMechanismFile(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/" + name);
   EXPECT_TRUE(r.ok()) << name;
   return std::move(*r.model);
-}
-
-Model FromJson(const nlohmann::json& j) {
-  LoadResult r = LoadMechanismText(j.dump(), "inline");
-  EXPECT_TRUE(r.ok()) << (r.errors.empty() ? "" : r.errors[0].ToString());
-  return std::move(*r.model);
-}
-
-nlohmann::json ReadTestData(const std::string& name) {
-  std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/tests/data/" + name);
-  return nlohmann::json::parse(f);
-}
-
-nlohmann::json ReadJson(const std::string& name) {
-  std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/" + name);
-  return nlohmann::json::parse(f);
 }
 
 struct Expected { const char* file; int grubler, mobility, redundant, idle; };

@@ -115,20 +115,12 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   }
   if (!rep.complete) err << "mechkin run: " << o.file << ": " << rep.message << "\n";
   if (o.stats && !rep.steps.empty()) {
-    std::vector<double> us;
-    double iters = 0, worst_aside = 0;
-    for (const auto& s : rep.steps) {
-      us.push_back(s.solve_seconds * 1e6);
-      iters += s.iterations;
-      worst_aside = std::max(worst_aside, s.set_aside_residual);
-    }
-    std::nth_element(us.begin(), us.begin() + us.size() / 2, us.end());
+    const StepStatistics st = SummarizeSteps(rep.steps);
     char line[160];
-    std::snprintf(line, sizeof line, "per step: %.3f us solve, %.3f Newton iterations", us[us.size() / 2],
-                  iters / rep.steps.size());
+    std::snprintf(line, sizeof line, "per step: %.3f us solve, %.3f Newton iterations", st.median_us, st.mean_iterations);
     err << "steps: " << rep.steps.size() << ", blocks: " << rep.blocks << " (solved: " << rep.blocks_solved << ")"
         << ", assembly iterations: " << rep.assembly_iterations
-        << ", set-aside equations: " << rep.set_aside.size() << " (largest scaled residual " << worst_aside << ")\n"
+        << ", set-aside equations: " << rep.set_aside.size() << " (largest scaled residual " << st.max_set_aside_residual << ")\n"
         << line << "\n";
   }
   if (rep.steps.empty()) return 1;  // refused or failed before the first row: no table at all

@@ -1,0 +1,33 @@
+// Test helpers: the repository's mechanism files and test data as JSON or models.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "model/loader.hpp"
+
+namespace mechkin::testing_files {
+
+/// mechanisms/NAME as JSON.
+inline nlohmann::json ReadJson(const std::string& name) {
+  std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/" + name);
+  return nlohmann::json::parse(f);
+}
+
+/// tests/data/NAME as JSON.
+inline nlohmann::json ReadTestData(const std::string& name) {
+  std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/tests/data/" + name);
+  return nlohmann::json::parse(f);
+}
+
+/// A model from a JSON document; the test fails if the loader rejects it.
+inline Model FromJson(const nlohmann::json& j) {
+  LoadResult r = LoadMechanismText(j.dump(), "inline");
+  EXPECT_TRUE(r.ok()) << (r.errors.empty() ? "" : r.errors[0].ToString());
+  return r.ok() ? std::move(*r.model) : Model{};
+}
+
+}  // namespace mechkin::testing_files
