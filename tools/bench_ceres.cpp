@@ -22,6 +22,7 @@ void Track(benchmark::State& st, const char* file, bool normalization) {
     const AnalysisReport rep = RunKinematicAnalysis(m, o, [&](const SystemState&, const StepDiagnostics& d) {
       iters += d.iterations;
       ++rows;
+      return true;
     });
     if (!rep.complete) st.SkipWithError(rep.message.c_str());
   }

@@ -9,7 +9,7 @@
 
 #include "constraints/system.hpp"
 #include "model/loader.hpp"
-#include "solvers/position.hpp"
+#include "kinematics/position.hpp"
 
 namespace mechkin {
 namespace {

@@ -12,7 +12,7 @@
 #include "analysis/kinematic_analysis.hpp"
 #include "mobility/mobility.hpp"
 #include "model/loader.hpp"
-#include "solvers/newton.hpp"
+#include "kinematics/newton.hpp"
 
 namespace mechkin {
 namespace {
@@ -47,7 +47,7 @@ void WholeStep(benchmark::State& st, const std::string& which) {
   o.order = 3;
   int rows = 0;
   for (auto _ : st) {
-    const AnalysisReport rep = RunKinematicAnalysis(m, o, [&](const SystemState&, const StepDiagnostics&) { ++rows; });
+    const AnalysisReport rep = RunKinematicAnalysis(m, o, [&](const SystemState&, const StepDiagnostics&) { ++rows; return true; });
     if (!rep.complete) st.SkipWithError(rep.message.c_str());
   }
   // Time per step (the one-off assembly is amortized over the rows).

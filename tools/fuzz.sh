@@ -1,26 +1,27 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (clang, ASan + UBSan) and runs each for SECONDS
-# (default 30). Crashing inputs are written to build-fuzz/crash-*; the corpus
-# is seeded with the bundled mechanisms and the invalid-file corpus.
+# Builds the libFuzzer targets from CMake (clang, ASan + UBSan, MECHKIN_FUZZ=ON)
+# and runs each for SECONDS (default 30). Crashing inputs are written to
+# build-fuzz/crash-*; the corpora are seeded with the bundled mechanisms and the
+# invalid-file corpus. A crash makes libFuzzer exit non-zero: the script fails.
 # Usage: tools/fuzz.sh [SECONDS]
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 secs="${1:-30}"
 out="$here/build-fuzz"
-mkdir -p "$out/corpus-loader" "$out/corpus-expression"
+cmake -S "$here" -B "$out" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DMECHKIN_FUZZ=ON -DMECHKIN_SANITIZE=ON -DMECHKIN_BUILD_TESTS=OFF -DMECHKIN_BUILD_BENCHMARKS=OFF >/dev/null
+cmake --build "$out" -j"$(nproc)" --target fuzz_loader fuzz_expression fuzz_check >/dev/null
+mkdir -p "$out/corpus-loader" "$out/corpus-check" "$out/corpus-expression"
 cp "$here"/mechanisms/*.json "$here"/tests/invalid/*.json "$out/corpus-loader/" 2>/dev/null || true
+cp "$here"/mechanisms/*.json "$here"/tests/invalid/*.json "$out/corpus-check/" 2>/dev/null || true
 printf '360*t' > "$out/corpus-expression/a"; printf 'sin(2*pi*t)^2/(1+t)' > "$out/corpus-expression/b"
 printf 'atan2(t, 1-t) + sqrt(exp(-t))' > "$out/corpus-expression/c"
-flags=(-std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
-       -I"$here/src" -I/usr/include/eigen3 -DJSON_DIAGNOSTICS=1)
-common=("$here"/src/model/*.cpp "$here"/src/math/*.cpp)
-clang++ "${flags[@]}" "$here/tools/fuzz/fuzz_loader.cpp" "${common[@]}" -o "$out/fuzz_loader"
-clang++ "${flags[@]}" "$here/tools/fuzz/fuzz_expression.cpp" "${common[@]}" -o "$out/fuzz_expression"
 cd "$out"
-# A crash makes libFuzzer exit non-zero (and write crash-*): the script then fails.
-./fuzz_loader -max_total_time="$secs" -max_len=65536 -print_final_stats=1 corpus-loader > loader.log 2>&1 ||
-  { tail -40 loader.log; exit 1; }
-grep -E "^Done|stat::number_of_executed_units" loader.log
-./fuzz_expression -max_total_time="$secs" -max_len=256 -print_final_stats=1 corpus-expression > expression.log 2>&1 ||
-  { tail -40 expression.log; exit 1; }
-grep -E "^Done|stat::number_of_executed_units" expression.log
+run() {  # target corpus max_len
+  ./tools/fuzz/"$1" -max_total_time="$secs" -max_len="$3" -timeout=20 -print_final_stats=1 "$2" > "$1.log" 2>&1 ||
+    { tail -40 "$1.log"; exit 1; }
+  echo "$1: $(grep -E 'stat::number_of_executed_units' "$1.log" | awk '{print $2}') executions, no crash"
+}
+run fuzz_loader corpus-loader 65536
+run fuzz_check corpus-check 65536
+run fuzz_expression corpus-expression 4096

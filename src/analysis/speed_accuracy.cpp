@@ -5,7 +5,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "output/motion_table.hpp"
 
 namespace mechkin {
 
@@ -18,27 +17,27 @@ std::string BenchSetting::Describe() const {
 
 double BenchResult::worst_error() const { return *std::max_element(error, error + 4); }
 
-ReferenceTable RunForBench(const Model& model, const BenchSetting& s, AnalysisReport* report) {
+Motion RunForBench(const Model& model, const BenchSetting& s) {
   Model m = model;
   m.analysis->steps = s.steps;
   TableOptions topt;
   topt.order = 3;
   topt.si = true;
-  MotionTable table(m, topt);
   AnalysisOptions o;
   o.order = 3;
   o.solver = s.solver;
   o.tolerance = s.tolerance;
   o.predictor_order = s.predictor;
   o.formulation = s.formulation;
-  *report = RunKinematicAnalysis(m, o, [&](const SystemState& st, const StepDiagnostics& d) {
-    table.AddRow(st, d.t, d.iterations, d.residual, d.condition, d.error_bound);
-  });
+  return RunMotion(m, o, topt);
+}
+
+ReferenceTable ReferenceFromMotion(const Motion& motion) {
   ReferenceTable ref;
-  for (size_t c = 0; c < table.header().size(); ++c) {
-    const std::string name = table.header()[c].substr(0, table.header()[c].find(" ["));
-    auto& col = name == "t" ? ref.t : ref.columns[name];
-    for (const auto& row : table.rows()) col.push_back(row[c]);
+  for (int c = 0; c < motion.cols(); ++c) {
+    const ColumnDescriptor& d = motion.columns()[c];
+    if (d.quantity == Quantity::Time) ref.t = motion.Column(c);
+    else ref.columns[d.name] = motion.Column(c);
   }
   return ref;
 }
@@ -49,51 +48,68 @@ ReferenceTable ReadReferenceCsv(const std::string& path) {
   std::string line;
   std::vector<std::string> names;
   ReferenceTable ref;
+  int line_number = 0;
+  const std::string where = "reference table '" + path + "'";
   while (std::getline(in, line)) {
+    ++line_number;
+    if (line.rfind("# PARTIAL", 0) == 0)
+      throw std::runtime_error(where + " is partial (its run stopped early): use a complete table");
     if (line.empty() || line[0] == '#') continue;
     std::stringstream ss(line);
     std::string cell;
     if (names.empty()) {
-      while (std::getline(ss, cell, ',')) names.push_back(cell.substr(0, cell.find(" [")));
+      while (std::getline(ss, cell, ',')) {
+        const auto lb = cell.find(" [");
+        const std::string unit = lb == std::string::npos ? "" : cell.substr(lb + 2, cell.size() - lb - 3);
+        const std::string base = unit.substr(0, unit.find('/'));
+        if (!base.empty() && base != "s" && base != "m" && base != "rad" && base != "1")
+          throw std::runtime_error(where + ": column '" + cell + "' is not in SI units: write the reference with `mechkin run --si`");
+        names.push_back(cell.substr(0, lb));
+      }
+      if (names.empty() || names[0] != "t")
+        throw std::runtime_error(where + ": the first column must be 't [s]' (a table written by `mechkin run --si`)");
       continue;
     }
     size_t c = 0;
     while (std::getline(ss, cell, ',') && c < names.size()) {
-      const double v = std::strtod(cell.c_str(), nullptr);
+      char* end = nullptr;
+      const double v = std::strtod(cell.c_str(), &end);
+      if (cell.empty() || *end != '\0')
+        throw std::runtime_error(where + ", line " + std::to_string(line_number) + ": '" + cell + "' is not a number");
       if (names[c] == "t") ref.t.push_back(v); else ref.columns[names[c]].push_back(v);
       ++c;
     }
+    if (c != names.size())
+      throw std::runtime_error(where + ", line " + std::to_string(line_number) + ": " + std::to_string(c) + " cells, the header has " + std::to_string(names.size()));
   }
-  if (ref.t.empty()) throw std::runtime_error("reference table '" + path + "' has no rows");
+  if (ref.t.empty()) throw std::runtime_error(where + " has no rows");
   return ref;
 }
 
 namespace {
 
-int OrderOf(const std::string& name) {
-  const auto p = name.find("_t");
-  if (p == std::string::npos) return 0;
-  return static_cast<int>(name.size() - p - 1);
-}
-
 // Errors per derivative order (translational and output columns; Euler parameters and
 // diagnostics excluded), each relative to the largest reference value of that order.
-void Compare(const ReferenceTable& run, const ReferenceTable& ref, double* err) {
+// The column's kind and order come from its descriptor, never from its name.
+bool Compared(const ColumnDescriptor& d) {
+  return !d.IsDiagnostic() && d.quantity != Quantity::Time && d.quantity != Quantity::EulerParameter &&
+         d.quantity != Quantity::AngularVelocity && d.order <= 3;
+}
+
+void Compare(const Motion& run, const ReferenceTable& ref, double* err) {
   double scale[4] = {0, 0, 0, 0}, diff[4] = {0, 0, 0, 0};
-  for (const auto& [name, values] : run.columns) {
-    if (name == "newton_iterations" || name == "residual" || name == "condition" || name.rfind("error_bound", 0) == 0 ||
-        name.find(".e") != std::string::npos ||
-        name.find(".w") != std::string::npos)
-      continue;
-    const auto it = ref.columns.find(name);
+  const std::vector<double> t = run.Column(0);
+  for (int c = 0; c < run.cols(); ++c) {
+    const ColumnDescriptor& d = run.columns()[c];
+    if (!Compared(d)) continue;
+    const auto it = ref.columns.find(d.name);
     if (it == ref.columns.end()) continue;
-    const int k = OrderOf(name);
-    if (k > 3) continue;
+    const int k = d.order;
     size_t j = 0;
-    for (size_t i = 0; i < run.t.size(); ++i) {
-      while (j < ref.t.size() && ref.t[j] < run.t[i] - 1e-9 * (std::abs(run.t[i]) + 1)) ++j;
-      if (j >= ref.t.size() || std::abs(ref.t[j] - run.t[i]) > 1e-9 * (std::abs(run.t[i]) + 1)) continue;
-      diff[k] = std::max(diff[k], std::abs(values[i] - it->second[j]));
+    for (size_t i = 0; i < t.size(); ++i) {
+      while (j < ref.t.size() && ref.t[j] < t[i] - 1e-9 * (std::abs(t[i]) + 1)) ++j;
+      if (j >= ref.t.size() || std::abs(ref.t[j] - t[i]) > 1e-9 * (std::abs(t[i]) + 1)) continue;
+      diff[k] = std::max(diff[k], std::abs(run.at(static_cast<int>(i), c) - it->second[j]));
       scale[k] = std::max(scale[k], std::abs(it->second[j]));
     }
   }
@@ -131,8 +147,8 @@ std::vector<BenchResult> RunBench(const Model& model, const std::vector<BenchSet
     r.setting = s;
     std::vector<double> medians;
     for (int rep = 0; rep < std::max(1, options.repeats); ++rep) {
-      AnalysisReport report;
-      const ReferenceTable table = RunForBench(model, s, &report);
+      const Motion table = RunForBench(model, s);
+      const AnalysisReport& report = table.report;
       r.complete = report.complete;
       if (!report.complete || report.steps.empty()) break;
       const StepStatistics st = SummarizeSteps(report.steps);
@@ -158,94 +174,6 @@ std::vector<BenchResult> RunBench(const Model& model, const std::vector<BenchSet
     });
   }
   return results;
-}
-
-void WriteBenchCsv(const std::vector<BenchResult>& results, std::ostream& out) {
-  out << "solver,tolerance,predictor,formulation,steps,complete,us_per_step_median,us_per_step_min,us_per_step_max,"
-         "newton_iterations,max_residual,error_position,error_velocity,error_acceleration,error_jerk,on_front\n";
-  for (const auto& r : results) {
-    const auto& s = r.setting;
-    out << (s.solver == PositionSolver::Ceres ? "ceres" : "newton") << "," << s.tolerance << "," << s.predictor << ","
-        << (s.formulation == Formulation::P ? "p" : "omega") << "," << s.steps << "," << (r.complete ? 1 : 0) << ","
-        << r.us_median << "," << r.us_min << "," << r.us_max << "," << r.iterations << "," << r.residual;
-    for (double e : r.error) out << "," << e;
-    out << "," << (r.on_front ? 1 : 0) << "\n";
-  }
-}
-
-void WriteBenchSvg(const std::vector<BenchResult>& results, const std::string& title, std::ostream& out) {
-  const double W = 640, H = 420, L = 70, R = 20, T = 40, B = 50;
-  double xmin = 1e300, xmax = 0, ymin = 1e300, ymax = 0;
-  for (const auto& r : results) {
-    if (!r.complete) continue;
-    xmin = std::min(xmin, r.us_median); xmax = std::max(xmax, r.us_median);
-    const double e = std::max(r.worst_error(), 1e-17);
-    ymin = std::min(ymin, e); ymax = std::max(ymax, e);
-  }
-  if (xmax <= 0) { xmin = 1; xmax = 10; ymin = 1e-16; ymax = 1; }
-  const double lx0 = std::floor(std::log10(xmin)), lx1 = std::ceil(std::log10(xmax)) + (xmin == xmax);
-  const double ly0 = std::floor(std::log10(ymin)), ly1 = std::ceil(std::log10(ymax)) + (ymin == ymax);
-  auto X = [&](double v) { return L + (std::log10(v) - lx0) / (lx1 - lx0) * (W - L - R); };
-  auto Y = [&](double v) { return H - B - (std::log10(std::max(v, 1e-17)) - ly0) / (ly1 - ly0) * (H - T - B); };
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">" << title << "</text>\n";
-  for (double e = lx0; e <= lx1; ++e)
-    out << "<line x1=\"" << X(std::pow(10, e)) << "\" y1=\"" << T << "\" x2=\"" << X(std::pow(10, e)) << "\" y2=\"" << H - B
-        << "\" stroke=\"#ddd\"/><text x=\"" << X(std::pow(10, e)) << "\" y=\"" << H - B + 16 << "\" text-anchor=\"middle\">1e"
-        << e << "</text>\n";
-  for (double e = ly0; e <= ly1; e += 2)
-    out << "<line x1=\"" << L << "\" y1=\"" << Y(std::pow(10, e)) << "\" x2=\"" << W - R << "\" y2=\"" << Y(std::pow(10, e))
-        << "\" stroke=\"#ddd\"/><text x=\"" << L - 6 << "\" y=\"" << Y(std::pow(10, e)) + 4 << "\" text-anchor=\"end\">1e" << e
-        << "</text>\n";
-  out << "<text x=\"" << W / 2 << "\" y=\"" << H - 12 << "\" text-anchor=\"middle\">time per step [us]</text>\n"
-      << "<text x=\"16\" y=\"" << H / 2 << "\" transform=\"rotate(-90 16 " << H / 2
-      << ")\" text-anchor=\"middle\">largest relative error (position..jerk)</text>\n";
-  std::vector<const BenchResult*> front;
-  for (const auto& r : results) {
-    if (!r.complete) continue;
-    out << "<circle cx=\"" << X(r.us_median) << "\" cy=\"" << Y(r.worst_error()) << "\" r=\"3\" fill=\""
-        << (r.on_front ? "#d62728" : "#1f77b4") << "\" opacity=\"0.7\"><title>" << r.setting.Describe() << "</title></circle>\n";
-    if (r.on_front) front.push_back(&r);
-  }
-  std::sort(front.begin(), front.end(), [](auto a, auto b) { return a->us_median < b->us_median; });
-  if (front.size() > 1) {
-    out << "<polyline fill=\"none\" stroke=\"#d62728\" points=\"";
-    for (auto* r : front) out << X(r->us_median) << "," << Y(r->worst_error()) << " ";
-    out << "\"/>\n";
-  }
-  out << "</svg>\n";
-}
-
-void PrintFront(const std::vector<BenchResult>& results, std::ostream& out) {
-  std::vector<const BenchResult*> front;
-  for (const auto& r : results) if (r.on_front) front.push_back(&r);
-  std::sort(front.begin(), front.end(), [](auto a, auto b) { return a->us_median < b->us_median; });
-  char line[320];
-  out << "Pareto front (time per step vs largest relative error of position, velocity, acceleration, jerk):\n";
-  std::snprintf(line, sizeof line, "  %-48s %12s %10s %10s %10s %10s %10s\n", "setting", "us/step", "iter/step",
-                "e(pos)", "e(vel)", "e(acc)", "e(jerk)");
-  out << line;
-  for (auto* r : front) {
-    std::snprintf(line, sizeof line, "  %-48s %8.2f [%.2f-%.2f] %6.2f %10.2e %10.2e %10.2e %10.2e\n",
-                  r->setting.Describe().c_str(), r->us_median, r->us_min, r->us_max, r->iterations, r->error[0],
-                  r->error[1], r->error[2], r->error[3]);
-    out << line;
-  }
-  struct Need { const char* what; double bound; };
-  for (const Need& need : {Need{"a design sweep, within 1e-3", 1e-3}, Need{"drawings and tolerancing, within 1e-6", 1e-6},
-                           Need{"cam and jerk checks, within 1e-9", 1e-9}}) {
-    const BenchResult* best = nullptr;
-    for (const auto& r : results)
-      if (r.complete && r.worst_error() <= need.bound && (!best || r.us_median < best->us_median)) best = &r;
-    out << "recommendation for " << need.what << " of the motion's size: ";
-    if (best) {
-      std::snprintf(line, sizeof line, "%s (%.2f us/step)", best->setting.Describe().c_str(), best->us_median);
-      out << line << "\n";
-    } else {
-      out << "none of the settings tried reaches it\n";
-    }
-  }
 }
 
 }  // namespace mechkin

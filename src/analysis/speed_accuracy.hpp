@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/kinematic_analysis.hpp"
+#include "analysis/motion.hpp"
 
 namespace mechkin {
 
@@ -38,8 +38,10 @@ struct ReferenceTable {
   std::map<std::string, std::vector<double>> columns;  // names without units
 };
 
-/// Runs `model` with a setting and returns its SI table (order 3).
-ReferenceTable RunForBench(const Model& model, const BenchSetting& s, AnalysisReport* report);
+/// Runs `model` with a setting and returns its SI motion (order 3, every column).
+Motion RunForBench(const Model& model, const BenchSetting& s);
+/// The reference columns of a run, by column name.
+ReferenceTable ReferenceFromMotion(const Motion& motion);
 /// Reads a table written by `mechkin run --si` (CSV). Throws std::runtime_error.
 ReferenceTable ReadReferenceCsv(const std::string& path);
 
@@ -52,10 +54,5 @@ std::vector<BenchSetting> BenchGrid(const Model& model, const BenchOptions& opti
 /// Measures every setting against `reference`; marks the Pareto front.
 std::vector<BenchResult> RunBench(const Model& model, const std::vector<BenchSetting>& grid,
                                   const ReferenceTable& reference, const BenchOptions& options);
-
-void WriteBenchCsv(const std::vector<BenchResult>& results, std::ostream& out);
-void WriteBenchSvg(const std::vector<BenchResult>& results, const std::string& title, std::ostream& out);
-/// The front as a table and one recommendation line per need.
-void PrintFront(const std::vector<BenchResult>& results, std::ostream& out);
 
 }  // namespace mechkin

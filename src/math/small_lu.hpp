@@ -57,6 +57,27 @@ class SmallLU {
       if (yj != 0) for (int i = 0; i < j; ++i) y[i] -= A(i, j) * yj;
     }
   }
+  /// x = A⁻ᵀ b with the same factors: PA = LU gives Aᵀ = Uᵀ Lᵀ P, so solve
+  /// Uᵀ z = b (forward), Lᵀ w = z (backward), then undo the row swaps in reverse.
+  void SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
+    const Eigen::MatrixXd& A = *lu_;
+    const int n = static_cast<int>(A.rows());
+    if (x != &b) *x = b;
+    Eigen::VectorXd& y = *x;
+    for (int j = 0; j < n; ++j) {  // Uᵀ z = b: row j of Uᵀ is column j of U
+      double v = y[j];
+      const double* uj = &A(0, j);
+      for (int i = 0; i < j; ++i) v -= uj[i] * y[i];
+      y[j] = v / A(j, j);
+    }
+    for (int j = n - 1; j >= 0; --j) {  // Lᵀ w = z, unit diagonal
+      double v = y[j];
+      const double* lj = &A(0, j);
+      for (int i = j + 1; i < n; ++i) v -= lj[i] * y[i];
+      y[j] = v;
+    }
+    for (int k = n - 1; k >= 0; --k) std::swap(y[k], y[perm_[k]]);
+  }
   double sign() const { return sign_; }
 
  private:

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "constraints/system.hpp"
-#include "solvers/position.hpp"
+#include "kinematics/position.hpp"
 
 namespace mechkin {
 
@@ -272,10 +272,10 @@ MobilityReport CalcMobility(const Model& model) {
     }
   }
   const int idle = static_cast<int>(rep.idle.size());
-  if (!rep.conflicting_drivers.empty()) rep.driving_status = "over";
-  else if (rep.dof_after_drivers - idle > 0) rep.driving_status = "under";
-  else rep.driving_status = "full";
-  if (rep.driving_status == "under") {
+  if (!rep.conflicting_drivers.empty()) rep.driving_status = DrivingStatus::Over;
+  else if (rep.dof_after_drivers - idle > 0) rep.driving_status = DrivingStatus::Under;
+  else rep.driving_status = DrivingStatus::Full;
+  if (rep.driving_status == DrivingStatus::Under) {
     // Name the remaining freedoms by the bodies they move most.
     const RankInfo rest = CalcRank(Jf);
     for (int c = 0; c < rest.null_basis.cols() && static_cast<int>(rep.remaining_freedoms.size()) < rep.dof_after_drivers - idle; ++c) {
@@ -294,75 +294,20 @@ MobilityReport CalcMobility(const Model& model) {
     const std::string suggestion = SuggestRemoval(model, rep);
     if (!suggestion.empty()) rep.suggestions.push_back(suggestion);
   }
+  if (rep.redundant > 0) rep.verdict_kind = MobilityVerdict::Overconstrained;
   if (rep.redundant > 0)
     rep.verdict = "overconstrained: " + std::to_string(rep.redundant) + " redundant equation" +
                   (rep.redundant == 1 ? "" : "s") + " — the Grübler count undercounts the mobility";
   return rep;
 }
 
-nlohmann::json MobilityReportJson(const Model& model, const MobilityReport& r) {
-  nlohmann::json j;
-  j["assembled"] = r.assembled;
-  j["assembly"] = r.assembly_message;
-  if (!r.assembled) return j;
-  j["equations"] = r.equations;
-  j["rank"] = r.rank;
-  j["mobility"] = r.mobility;
-  j["redundant"] = r.redundant;
-  j["rank_threshold"] = kRankThreshold;
-  j["sigma_min_kept"] = r.sigma_min_kept;
-  j["sigma_max_dropped"] = r.sigma_max_dropped;
-  j["redundant_equations"] = nlohmann::json::array();
-  for (const auto& e : r.redundant_equations)
-    j["redundant_equations"].push_back({{"equation", e.description}, {"fixed_by", e.fixed_by}});
-  j["idle"] = nlohmann::json::array();
-  for (const auto& f : r.idle)
-    j["idle"].push_back({{"bodies", f.body}, {"axis", {f.axis.x(), f.axis.y(), f.axis.z()}}, {"description", f.description}});
-  // format-v1: DOF after drivers = mobility − number of drivers (negative: over-driven).
-  j["dof_after_drivers"] = r.mobility - static_cast<int>(model.drivers.size());
-  // Rank of joints + drivers together: the freedoms actually left (never negative).
-  j["free_after_drivers"] = r.dof_after_drivers;
-  j["driven"] = r.driving_status;
-  j["conflicting_drivers"] = r.conflicting_drivers;
-  j["remaining_freedoms"] = r.remaining_freedoms;
-  j["verdict"] = r.verdict;
-  j["suggestions"] = r.suggestions;
-  return j;
-}
-
-void PrintMobilityText(const nlohmann::json& m, std::ostream& out) {
-  if (!m.value("assembled", false)) {
-    out << "  mobility: not computed — " << m.value("assembly", std::string()) << "\n";
-    return;
+const char* DrivingStatusName(DrivingStatus status) {
+  switch (status) {
+    case DrivingStatus::Full: return "full";
+    case DrivingStatus::Under: return "under";
+    case DrivingStatus::Over: return "over";
   }
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "  mobility (rank): %d  [rank %d of %d equations; margin: smallest kept σ %.2e, largest dropped σ %.2e]\n",
-                m["mobility"].get<int>(), m["rank"].get<int>(), m["equations"].get<int>(),
-                m["sigma_min_kept"].get<double>(), m["sigma_max_dropped"].get<double>());
-  out << buf;
-  out << "  redundant equations: " << m["redundant"].get<int>() << "\n";
-  for (const auto& e : m["redundant_equations"]) {
-    out << "    - " << e["equation"].get<std::string>();
-    const auto& fb = e["fixed_by"];
-    if (!fb.empty()) {
-      out << " is already fixed by joints ";
-      for (size_t k = 0; k < fb.size(); ++k) out << (k ? ", " : "") << fb[k].get<std::string>();
-    }
-    out << "\n";
-  }
-  if (!m["verdict"].get<std::string>().empty()) out << "  verdict: " << m["verdict"].get<std::string>() << "\n";
-  for (const auto& s : m["suggestions"]) out << "  suggestion: " << s.get<std::string>() << "\n";
-  out << "  idle freedoms: " << m["idle"].size() << "\n";
-  for (const auto& f : m["idle"]) out << "    - " << f["description"].get<std::string>() << "\n";
-  out << "  DOF after drivers: " << m["dof_after_drivers"].get<int>() << " (mobility − drivers; freedoms left by rank: "
-      << m["free_after_drivers"].get<int>() << ") — driven: " << m["driven"].get<std::string>();
-  if (!m["conflicting_drivers"].empty()) {
-    out << " (conflicting drivers: ";
-    for (size_t k = 0; k < m["conflicting_drivers"].size(); ++k) out << (k ? ", " : "") << m["conflicting_drivers"][k].get<std::string>();
-    out << ")";
-  }
-  out << "\n";
-  for (const auto& f : m["remaining_freedoms"]) out << "    - " << f.get<std::string>() << "\n";
+  return "full";
 }
 
 }  // namespace mechkin

@@ -9,8 +9,6 @@
 // generic one) is used.
 #pragma once
 
-#include <nlohmann/json.hpp>
-#include <ostream>
 #include <string>
 #include <vector>
 
@@ -19,6 +17,11 @@
 namespace mechkin {
 
 constexpr double kRankThreshold = 1e-8;
+
+enum class DrivingStatus { Full, Under, Over };
+/// "full", "under", "over" (the words of the file's `expect.driven`).
+const char* DrivingStatusName(DrivingStatus status);
+enum class MobilityVerdict { Regular, Overconstrained };
 
 struct RedundantEquation {
   int row;
@@ -46,15 +49,14 @@ struct MobilityReport {
   // Driving
   int driver_rank_deficit = 0;
   int dof_after_drivers = 0;
-  std::string driving_status;  // "full", "under", "over"
+  DrivingStatus driving_status = DrivingStatus::Full;
   std::vector<std::string> conflicting_drivers;
   std::vector<std::string> remaining_freedoms;
-  std::string verdict;
+  MobilityVerdict verdict_kind = MobilityVerdict::Regular;
+  std::string verdict;  // the verdict in words (empty when regular)
   std::vector<std::string> suggestions;
 };
 
 MobilityReport CalcMobility(const Model& model);
-nlohmann::json MobilityReportJson(const Model& model, const MobilityReport& r);
-void PrintMobilityText(const nlohmann::json& mobility_json, std::ostream& out);
 
 }  // namespace mechkin

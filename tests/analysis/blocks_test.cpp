@@ -8,9 +8,10 @@
 
 #include "analysis/kinematic_analysis.hpp"
 #include "model/loader.hpp"
-#include "output/motion_table.hpp"
-#include "solvers/block_structure.hpp"
-#include "solvers/newton.hpp"
+#include "analysis/motion.hpp"
+#include "test_files.hpp"
+#include "kinematics/block_structure.hpp"
+#include "kinematics/newton.hpp"
 
 namespace mechkin {
 namespace {
@@ -74,13 +75,13 @@ TEST(Blocks, SelectedBodiesMatchTheFullRun) {
     topt.all_bodies = false;
     topt.bodies = {"R3"};
     topt.all_outputs = false;
-    MotionTable table(m, topt);
+    MotionRecorder table(m, topt);
     AnalysisOptions o;
     o.needed_bodies = std::move(needed);
     *rep = RunKinematicAnalysis(m, o, [&](const SystemState& s, const StepDiagnostics& d) {
-      table.AddRow(s, d.t, d.iterations, d.residual);
+      return table.Record(s, d);
     });
-    return table.rows();
+    return testing_files::RowsOf(table.motion());
   };
   AnalysisReport full_rep, part_rep;
   const auto full = run({}, &full_rep);

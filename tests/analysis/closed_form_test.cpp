@@ -8,7 +8,8 @@
 #include "../constraints/test_jet.hpp"
 #include "analysis/kinematic_analysis.hpp"
 #include "model/loader.hpp"
-#include "output/motion_table.hpp"
+#include "analysis/motion.hpp"
+#include "test_files.hpp"
 
 namespace mechkin {
 namespace {
@@ -36,14 +37,14 @@ Table RunTable(const Model& m, AnalysisOptions opt = {}) {
   TableOptions topt;
   topt.order = opt.order;
   topt.si = true;
-  MotionTable table(m, topt);
+  MotionRecorder table(m, topt);
   Table out;
   out.report = RunKinematicAnalysis(m, opt, [&](const SystemState& s, const StepDiagnostics& d) {
-    table.AddRow(s, d.t, d.iterations, d.residual);
+    return table.Record(s, d);
   });
-  for (size_t c = 0; c < table.header().size(); ++c) {
-    std::string name = table.header()[c].substr(0, table.header()[c].find(" ["));
-    for (const auto& row : table.rows()) out.col[name].push_back(row[c]);
+  for (size_t c = 0; c < testing_files::HeaderOf(table.motion()).size(); ++c) {
+    std::string name = testing_files::HeaderOf(table.motion())[c].substr(0, testing_files::HeaderOf(table.motion())[c].find(" ["));
+    for (const auto& row : testing_files::RowsOf(table.motion())) out.col[name].push_back(row[c]);
   }
   return out;
 }

@@ -8,7 +8,7 @@
 #include "constraints/system.hpp"
 #include "model/frames.hpp"
 #include "model/loader.hpp"
-#include "solvers/position.hpp"
+#include "kinematics/position.hpp"
 
 namespace mechkin {
 namespace {

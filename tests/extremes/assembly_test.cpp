@@ -9,7 +9,7 @@
 #include "analysis/kinematic_analysis.hpp"
 #include "model/loader.hpp"
 #include "../test_files.hpp"
-#include "output/motion_table.hpp"
+#include "analysis/motion.hpp"
 
 namespace mechkin {
 namespace {
@@ -25,13 +25,13 @@ Rows RunSi(const nlohmann::json& j, AnalysisOptions o = {}) {
   TableOptions topt;
   topt.order = o.order;
   topt.si = true;
-  MotionTable table(*r.model, topt);
+  MotionRecorder table(*r.model, topt);
   Rows out;
   out.rep = RunKinematicAnalysis(*r.model, o, [&](const SystemState& s, const StepDiagnostics& d) {
-    table.AddRow(s, d.t, d.iterations, d.residual, d.condition, d.error_bound);
+    return table.Record(s, d);
   });
-  out.header = table.header();
-  out.rows = table.rows();
+  out.header = testing_files::HeaderOf(table.motion());
+  out.rows = testing_files::RowsOf(table.motion());
   return out;
 }
 

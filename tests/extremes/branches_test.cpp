@@ -6,7 +6,8 @@
 
 #include "analysis/kinematic_analysis.hpp"
 #include "model/loader.hpp"
-#include "output/motion_table.hpp"
+#include "analysis/motion.hpp"
+#include "test_files.hpp"
 
 namespace mechkin {
 namespace {
@@ -51,12 +52,12 @@ RunOut RunRocker(const nlohmann::json& j, const AnalysisOptions& o) {
   topt.order = o.order;
   topt.si = true;
   topt.all_bodies = false;
-  MotionTable table(*r.model, topt);
+  MotionRecorder table(*r.model, topt);
   RunOut out;
   out.rep = RunKinematicAnalysis(*r.model, o, [&](const SystemState& s, const StepDiagnostics& d) {
-    table.AddRow(s, d.t, d.iterations, d.residual);
+    return table.Record(s, d);
   });
-  for (const auto& row : table.rows()) {
+  for (const auto& row : testing_files::RowsOf(table.motion())) {
     out.t.push_back(row[0]);
     out.rocker.push_back(row[1]);
   }

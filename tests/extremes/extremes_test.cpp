@@ -9,7 +9,7 @@
 #include "analysis/kinematic_analysis.hpp"
 #include "model/loader.hpp"
 #include "../test_files.hpp"
-#include "output/motion_table.hpp"
+#include "analysis/motion.hpp"
 
 namespace mechkin {
 namespace {
@@ -23,14 +23,14 @@ Columns RunColumns(const Model& m, AnalysisReport* rep, int order = 3) {
   TableOptions topt;
   topt.order = order;
   topt.si = true;
-  MotionTable table(m, topt);
+  MotionRecorder table(m, topt);
   *rep = RunKinematicAnalysis(m, AnalysisOptions{order}, [&](const SystemState& s, const StepDiagnostics& d) {
-    table.AddRow(s, d.t, d.iterations, d.residual);
+    return table.Record(s, d);
   });
   Columns c;
-  for (size_t k = 0; k < table.header().size(); ++k) {
-    const std::string name = table.header()[k].substr(0, table.header()[k].find(" ["));
-    for (const auto& r : table.rows()) c[name].push_back(r[k]);
+  for (size_t k = 0; k < testing_files::HeaderOf(table.motion()).size(); ++k) {
+    const std::string name = testing_files::HeaderOf(table.motion())[k].substr(0, testing_files::HeaderOf(table.motion())[k].find(" ["));
+    for (const auto& r : testing_files::RowsOf(table.motion())) c[name].push_back(r[k]);
   }
   return c;
 }
@@ -90,16 +90,16 @@ TEST(Extremes, TenThousandRevolutions) {
   topt.si = true;
   topt.all_bodies = false;
   topt.bodies = {};
-  MotionTable table(m, topt);
+  MotionRecorder table(m, topt);
   double worst_norm = 0;
   std::vector<double> last;
   const AnalysisReport rep = RunKinematicAnalysis(m, AnalysisOptions{1}, [&](const SystemState& s, const StepDiagnostics& d) {
     for (const auto& b : s.bodies) worst_norm = std::max(worst_norm, std::abs(b.p.norm() - 1));
-    table.AddRow(s, d.t, d.iterations, d.residual);
+    return table.Record(s, d);
   });
   ASSERT_TRUE(rep.complete) << rep.message;
-  const auto& rows = table.rows();
-  const auto& h = table.header();
+  const auto& rows = testing_files::RowsOf(table.motion());
+  const auto& h = testing_files::HeaderOf(table.motion());
   auto col = [&](const std::string& prefix) {
     for (size_t k = 0; k < h.size(); ++k) if (h[k].rfind(prefix + " [", 0) == 0) return k;
     return h.size();

@@ -4,7 +4,8 @@
 
 #include "analysis/speed_accuracy.hpp"
 #include "model/loader.hpp"
-#include "output/motion_table.hpp"
+#include "io/bench_report.hpp"
+#include "io/output_file.hpp"
 
 namespace mechkin {
 
@@ -36,12 +37,12 @@ int RunBenchCommand(const BenchCommandOptions& o, std::ostream& out, std::ostrea
       reference = ReadReferenceCsv(o.reference);
     } else {
       BenchSetting ref{PositionSolver::Newton, 1e-13, 3, Formulation::Omega, 8 * model.analysis->steps};
-      AnalysisReport rep;
-      reference = RunForBench(model, ref, &rep);
-      if (!rep.complete) {
-        err << "mechkin bench: the reference run failed: " << rep.message << "\n";
+      const Motion run = RunForBench(model, ref);
+      if (!run.complete) {
+        err << "mechkin bench: the reference run failed: " << run.stop.message << "\n";
         return 1;
       }
+      reference = ReferenceFromMotion(run);
       out << "reference: " << ref.Describe() << "\n";
     }
   } catch (const std::exception& e) {

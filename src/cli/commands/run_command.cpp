@@ -10,7 +10,8 @@
 
 #include "analysis/kinematic_analysis.hpp"
 #include "model/loader.hpp"
-#include "output/motion_table.hpp"
+#include "analysis/motion.hpp"
+#include "io/table_writer.hpp"
 
 namespace mechkin {
 
@@ -36,6 +37,88 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
   });
 }
 
+namespace {
+
+// Progress on a terminal's stderr for runs longer than a second.
+class ProgressBar {
+ public:
+  ProgressBar(std::ostream& err, int total) : err_(err), total_(total), tty_(::isatty(2)) {}
+  void Row() {
+    ++done_;
+    if (!tty_) return;
+    const auto now = Clock::now();
+    if (now - start_ > std::chrono::seconds(1) && now - last_draw_ > std::chrono::milliseconds(200)) {
+      last_draw_ = now;
+      const int pct = total_ ? static_cast<int>(100LL * done_ / total_) : 0;
+      err_ << "\r[" << std::string(pct / 5, '#') << std::string(20 - pct / 5, ' ') << "] " << pct << "% " << std::flush;
+    }
+  }
+  void Clear() {
+    if (tty_ && Clock::now() - start_ > std::chrono::seconds(1)) err_ << "\r" << std::string(40, ' ') << "\r";
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::ostream& err_;
+  int total_, done_ = 0;
+  bool tty_;
+  Clock::time_point start_ = Clock::now(), last_draw_ = start_;
+};
+
+// Loud, not quiet: the first row whose error bound exceeds 1e-4 for some
+// derivative order (the 4th digit may be wrong), per order.
+class ConditioningWatch {
+ public:
+  explicit ConditioningWatch(int order) : order_(order) {}
+  void Row(const StepDiagnostics& d) {
+    for (int k = 0; k <= order_; ++k) {
+      if (d.error_bound[k] > 1e-4 && !seen_[k]) { seen_[k] = true; first_t_[k] = d.t; first_condition_[k] = d.condition; }
+      worst_[k] = std::max(worst_[k], d.error_bound[k]);
+    }
+  }
+  void Report(std::ostream& err) const {
+    static const char* kOrderName[] = {"position", "velocity", "acceleration", "jerk", "snap"};
+    for (int k = 0; k <= order_; ++k)
+      if (seen_[k])
+        err << "mechkin run: warning: " << kOrderName[k] << " is ill-conditioned from t = " << first_t_[k]
+            << " s (condition estimate " << first_condition_[k] << "; relative error bound up to " << worst_[k]
+            << "): a singular position is near; see the error_bound columns\n";
+  }
+
+ private:
+  int order_;
+  bool seen_[kMaxOrder + 1] = {false, false, false, false, false};
+  double first_t_[kMaxOrder + 1] = {0, 0, 0, 0, 0}, first_condition_[kMaxOrder + 1] = {0, 0, 0, 0, 0};
+  double worst_[kMaxOrder + 1] = {0, 0, 0, 0, 0};
+};
+
+AnalysisOptions AnalysisOptionsOf(const RunOptions& o, const Model& model, const MotionLayout& layout) {
+  AnalysisOptions a;
+  a.order = o.order;
+  a.formulation = o.formulation == "p" ? Formulation::P : Formulation::Omega;
+  a.solver = o.solver == "ceres" ? PositionSolver::Ceres : PositionSolver::Newton;
+  a.tolerance = o.tolerance;
+  a.keep_step_diagnostics = false;
+  if (o.bodies_given || o.outputs_given) {
+    // Only the bodies the table shows, or that its outputs read, are needed.
+    a.needed_bodies = layout.NeededBodies(model);
+    if (a.needed_bodies.empty()) a.needed_bodies.push_back(-1);  // nothing requested: solve no block
+  }
+  return a;
+}
+
+void PrintStats(const AnalysisReport& rep, const std::vector<StepDiagnostics>& steps, std::ostream& err) {
+  const StepStatistics st = SummarizeSteps(steps);
+  char line[160];
+  std::snprintf(line, sizeof line, "per step: %.3f us solve, %.3f Newton iterations", st.median_us, st.mean_iterations);
+  err << "steps: " << steps.size() << ", blocks: " << rep.blocks << " (solved: " << rep.blocks_solved << ")"
+      << ", assembly iterations: " << rep.assembly_iterations << ", set-aside equations: " << rep.set_aside.size()
+      << " (largest scaled residual " << st.max_set_aside_residual << ")\n"
+      << line << "\n";
+}
+
+}  // namespace
+
 int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   const LoadResult loaded = LoadMechanismFile(o.file);
   for (const auto& w : loaded.warnings) err << o.file << ": warning: " << w.ToString() << "\n";
@@ -51,92 +134,45 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   topt.all_outputs = !o.outputs_given;
   for (const auto& b : o.bodies) if (!b.empty()) topt.bodies.push_back(b);
   for (const auto& x : o.outputs) if (!x.empty()) topt.outputs.push_back(x);
-  std::unique_ptr<MotionTable> table;
+  std::unique_ptr<MotionLayout> layout;
   try {
-    table = std::make_unique<MotionTable>(model, topt);
+    layout = std::make_unique<MotionLayout>(model, topt);
   } catch (const std::exception& e) {
     err << "mechkin run: " << e.what() << "\n";
     return 2;
   }
-  AnalysisOptions aopt;
-  aopt.order = o.order;
-  aopt.formulation = o.formulation == "p" ? Formulation::P : Formulation::Omega;
-  aopt.solver = o.solver == "ceres" ? PositionSolver::Ceres : PositionSolver::Newton;
-  aopt.tolerance = o.tolerance;
-  if (o.bodies_given || o.outputs_given) {
-    // Only the bodies the table shows, or that its outputs read, are needed.
-    std::vector<char> need(model.num_bodies(), 0);
-    for (int b = 0; b < model.num_bodies(); ++b)
-      if (topt.all_bodies || std::count(topt.bodies.begin(), topt.bodies.end(), model.bodies[b].name)) need[b] = 1;
-    for (const auto& out : model.outputs)
-      if (topt.all_outputs || std::count(topt.outputs.begin(), topt.outputs.end(), out.name))
-        for (BodyIndex b : {out.body1, out.body2})
-          if (b != kGround) need[b] = 1;
-    for (int b = 0; b < model.num_bodies(); ++b)
-      if (need[b]) aopt.needed_bodies.push_back(b);
-    if (aopt.needed_bodies.empty()) aopt.needed_bodies.push_back(-1);  // nothing requested: solve no block
+  // The destination first: a path that cannot be written fails before the analysis.
+  OutputFile file;
+  std::string why;
+  if (!file.Open(o.output, {o.file}, &why, &out)) {
+    err << "mechkin run: " << why << "\n";
+    return 1;
   }
-
-  const bool tty = ::isatty(2);
-  const auto start = std::chrono::steady_clock::now();
-  auto last_draw = start;
-  const int total = model.analysis ? model.analysis->steps + 1 : 0;
-  int done = 0;
-  const AnalysisReport rep = RunKinematicAnalysis(model, aopt, [&](const SystemState& s, const StepDiagnostics& d) {
-    table->AddRow(s, d.t, d.iterations, d.residual, d.condition, d.error_bound);
-    ++done;
-    if (tty) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - start > std::chrono::seconds(1) && now - last_draw > std::chrono::milliseconds(200)) {
-        last_draw = now;
-        const int pct = total ? 100 * done / total : 0;
-        err << "\r[" << std::string(pct / 5, '#') << std::string(20 - pct / 5, ' ') << "] " << pct << "% " << std::flush;
-      }
-    }
+  TableWriter writer(*layout, o.format == "json" ? TableFormat::Json : TableFormat::Csv, &file);
+  RowEvaluator eval(model, *layout);
+  std::vector<double> row(layout->size());
+  ProgressBar progress(err, model.analysis ? model.analysis->steps + 1 : 0);
+  ConditioningWatch watch(o.order);
+  std::vector<StepDiagnostics> steps;
+  const AnalysisReport rep = RunKinematicAnalysis(model, AnalysisOptionsOf(o, model, *layout),
+                                                  [&](const SystemState& s, const StepDiagnostics& d) {
+    eval.Evaluate(s, d, row.data());
+    progress.Row();
+    watch.Row(d);
+    if (o.stats) steps.push_back(d);
+    return writer.Append(row.data(), layout->size());
   });
-  if (tty && std::chrono::steady_clock::now() - start > std::chrono::seconds(1)) err << "\r" << std::string(40, ' ') << "\r";
+  progress.Clear();
   for (const auto& sa : rep.set_aside) err << "mechkin run: redundant equation set aside: " << sa << "\n";
-  // Loud, not quiet: a row whose error bound (from the condition estimate) exceeds
-  // 1e-4 for some derivative order (the 4th digit may be wrong) is named on stderr.
-  {
-    static const char* kOrderName[] = {"position", "velocity", "acceleration", "jerk", "snap"};
-    for (int k = 0; k <= o.order; ++k) {
-      const StepDiagnostics* first = nullptr;
-      double worst = 0;
-      for (const auto& d : rep.steps) {
-        if (d.error_bound[k] > 1e-4 && !first) first = &d;
-        worst = std::max(worst, d.error_bound[k]);
-      }
-      if (first)
-        err << "mechkin run: warning: " << kOrderName[k] << " is ill-conditioned from t = " << first->t
-            << " s (condition estimate " << first->condition << "; relative error bound up to " << worst
-            << "): a singular position is near; see the error_bound columns\n";
-    }
-  }
-  if (!rep.complete) err << "mechkin run: " << o.file << ": " << rep.message << "\n";
-  if (o.stats && !rep.steps.empty()) {
-    const StepStatistics st = SummarizeSteps(rep.steps);
-    char line[160];
-    std::snprintf(line, sizeof line, "per step: %.3f us solve, %.3f Newton iterations", st.median_us, st.mean_iterations);
-    err << "steps: " << rep.steps.size() << ", blocks: " << rep.blocks << " (solved: " << rep.blocks_solved << ")"
-        << ", assembly iterations: " << rep.assembly_iterations
-        << ", set-aside equations: " << rep.set_aside.size() << " (largest scaled residual " << st.max_set_aside_residual << ")\n"
-        << line << "\n";
-  }
-  if (rep.steps.empty()) return 1;  // refused or failed before the first row: no table at all
-  std::ostringstream text;
-  const bool partial = !rep.complete;
-  const std::string note = partial ? rep.message.substr(0, rep.message.find('\n')) : "";
-  if (o.format == "json") table->WriteJson(text, partial, note);
-  else table->WriteCsv(text, partial, note);
-  if (o.output.empty()) {
-    out << text.str();
-  } else {
-    std::string why;
-    if (!WriteFileAtomically(o.output, text.str(), &why)) {
-      err << "mechkin run: " << why << "\n";
-      return 1;
-    }
+  watch.Report(err);
+  if (!rep.complete && rep.stop != StopKind::Interrupted) err << "mechkin run: " << o.file << ": " << rep.message << "\n";
+  if (o.stats && !steps.empty()) PrintStats(rep, steps, err);
+  if (rep.rows == 0) return 1;  // refused or failed before the first row: no table at all
+  std::string note = rep.complete ? "" : rep.message.substr(0, rep.message.find('\n'));
+  if (!rep.complete && note.empty()) note = "the run stopped early";
+  if (!writer.Finish(note, &why)) {
+    err << "mechkin run: " << why << "\n";
+    return 1;
   }
   return rep.complete ? 0 : 1;
 }

@@ -1,4 +1,4 @@
-#include "solvers/position.hpp"
+#include "kinematics/position.hpp"
 
 #include <cmath>
 

@@ -13,12 +13,13 @@
 #include <Eigen/SparseLU>
 #include <memory>
 
+#include "kinematics/factorization.hpp"
 #include "math/small_lu.hpp"
-#include "solvers/position.hpp"
+#include "kinematics/position.hpp"
 
 namespace mechkin {
 
-class NewtonSolver {
+class NewtonSolver : public Factorization {
  public:
   /// `rows`: the independent equations (redundant ones set aside); must be 6n of them.
   NewtonSolver(const ConstraintSystem& sys, std::vector<int> rows);
@@ -30,9 +31,13 @@ class NewtonSolver {
   SolveSummary Solve(const SolveOptions& options, SystemState* s, bool reuse = false);
 
   /// Factorizes Φ_q at the current pose (ω' version). Returns false if singular.
-  bool Factorize(const SystemState& s);
+  bool Factorize(const SystemState& s) override;
   /// Solves Φ_q x = b with the current factorization (b, x over the active rows / 6n columns).
   void BackSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x);
+  bool SolveLinear(const Eigen::VectorXd& b, Eigen::VectorXd* x) override { BackSolve(b, x); return factorized_; }
+  /// Φ_qᵀ x = b with the same factors (dense: SmallLU; sparse: SparseLU's transpose view).
+  bool SolveLinearTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) override;
+  double Sign() override { return JacobianSign(); }
 
   /// Sign of det Φ_q of the current factorization (ω' columns). It flips exactly
   /// when the path crosses a singular position, which is how runs detect them.
@@ -42,7 +47,7 @@ class NewtonSolver {
   const Eigen::SparseMatrix<double>& jacobian() const { return jac_.matrix(); }
   /// Cheap estimate of the condition number of Φ_q (Frobenius norm times an
   /// inverse-iteration estimate of ‖Φ_q⁻¹‖), from the current factorization.
-  double ConditionEstimate();
+  double ConditionEstimate() override;
 
  private:
   const ConstraintSystem& sys_;

@@ -1,4 +1,4 @@
-#include "solvers/ceres_position.hpp"
+#include "kinematics/ceres_position.hpp"
 
 #include <ceres/ceres.h>
 #include <ceres/manifold.h>

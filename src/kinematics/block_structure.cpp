@@ -1,4 +1,4 @@
-#include "solvers/block_structure.hpp"
+#include "kinematics/block_structure.hpp"
 
 #include <algorithm>
 #include <functional>

@@ -13,7 +13,7 @@
 // 216 vs 307 µs; Stewart platform 37 vs 39 it., 172 vs 179 µs — the manifold wins.
 #pragma once
 
-#include "solvers/position.hpp"
+#include "kinematics/position.hpp"
 
 namespace mechkin {
 

@@ -1,4 +1,4 @@
-#include "solvers/newton.hpp"
+#include "kinematics/newton.hpp"
 
 #include <cmath>
 
@@ -34,6 +34,13 @@ bool NewtonSolver::Factorize(const SystemState& s) {
 void NewtonSolver::BackSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x) {
   if (dense_) dense_lu_.Solve(b, x);
   else *x = lu_.solve(b);
+}
+
+bool NewtonSolver::SolveLinearTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) {
+  if (!factorized_) return false;
+  if (dense_) dense_lu_.SolveTranspose(b, x);
+  else *x = lu_.transpose().solve(b);
+  return true;
 }
 
 double NewtonSolver::JacobianSign() {

@@ -6,13 +6,14 @@
 
 #include <memory>
 
+#include "kinematics/factorization.hpp"
 #include "math/small_lu.hpp"
-#include "solvers/block_structure.hpp"
-#include "solvers/position.hpp"
+#include "kinematics/block_structure.hpp"
+#include "kinematics/position.hpp"
 
 namespace mechkin {
 
-class BlockSolver {
+class BlockSolver : public Factorization {
  public:
   /// `active`: the independent rows (6n of them); `needed`: per block, from NeededBlocks().
   BlockSolver(const ConstraintSystem& sys, const std::vector<int>& active, const BlockStructure& bs,
@@ -21,13 +22,17 @@ class BlockSolver {
   /// Newton on every needed block, in order. Returns the worst block's summary.
   SolveSummary Solve(const SolveOptions& options, SystemState* s);
   /// Factorizes every needed block at the current pose (for the derivative solves).
-  bool Factorize(const SystemState& s);
+  bool Factorize(const SystemState& s) override;
   /// Velocity … up to `order` (ω' version) into the bodies of the needed blocks.
   void Derivatives(int order, SystemState* s);
   /// sign(det) of the needed diagonal blocks' product, and a condition estimate
   /// (largest over the blocks).
-  double Sign() const;
-  double ConditionEstimate();
+  double Sign() override;
+  double ConditionEstimate() override;
+  /// The block path serves partial selections only: whole-system solves are
+  /// done by the full factorization (NewtonSolver).
+  bool SolveLinear(const Eigen::VectorXd&, Eigen::VectorXd*) override { return false; }
+  bool SolveLinearTranspose(const Eigen::VectorXd&, Eigen::VectorXd*) override { return false; }
   int blocks() const { return static_cast<int>(blocks_.size()); }
   int solved_blocks() const { return solved_; }
 

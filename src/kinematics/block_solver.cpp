@@ -1,4 +1,4 @@
-#include "solvers/block_solver.hpp"
+#include "kinematics/block_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -173,7 +173,7 @@ void BlockSolver::Derivatives(int order, SystemState* s) {
   for (auto& k : s->bodies) k.CompleteOrder(order);
 }
 
-double BlockSolver::Sign() const {
+double BlockSolver::Sign() {
   double sign = 1;
   for (const Block& b : blocks_) {
     sign *= b.solver.sign();

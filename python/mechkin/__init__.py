@@ -1,0 +1,281 @@
+"""mechkin: spatial kinematics of mechanisms, over the same C++ core as the CLI.
+
+    import mechkin
+    model = mechkin.load("mechanisms/spatial-slider-crank.json")
+    motion = model.run()                 # a Motion; numpy views of the core's table
+    motion.t, motion["piston.x_tt"], motion.body("rod").position(1)
+    motion.to_pandas()                   # needs pandas
+    model.check().mobility               # the `mechkin check` report
+
+Models are immutable and pickle (as their file text); a Motion pickles too.
+Runs release the GIL, so a model can be run from several threads at once.
+"""
+import json as _json
+
+import numpy as _np
+from numpy.lib.stride_tricks import as_strided as _as_strided
+
+from . import _mechkin
+
+__all__ = ["load", "loads", "Model", "Motion", "CheckReport", "FormatError", "Diagnostic", "RunStop"]
+
+
+class Diagnostic(tuple):
+    """One problem of a file: (pointer, message, fix)."""
+    __slots__ = ()
+
+    def __new__(cls, pointer, message, fix):
+        return super().__new__(cls, (pointer, message, fix))
+
+    pointer = property(lambda self: self[0], doc="JSON pointer of the offending value ('' = whole file)")
+    message = property(lambda self: self[1], doc="what is wrong")
+    fix = property(lambda self: self[2], doc="how to fix it")
+
+    def __str__(self):
+        where = self.pointer or "(file)"
+        return "%s: %s%s" % (where, self.message, (" (fix: %s)" % self.fix) if self.fix else "")
+
+
+class FormatError(ValueError):
+    """An invalid mechanism file. `diagnostics` lists every problem, not only the first."""
+
+    def __init__(self, source, diagnostics):
+        self.source = source
+        self.diagnostics = [Diagnostic(*d) for d in diagnostics]
+        lines = ["%s: %d error(s)" % (source, len(self.diagnostics))] + ["  " + str(d) for d in self.diagnostics]
+        super().__init__("\n".join(lines))
+
+
+def _compile(text, source):
+    core, errors, warnings = _mechkin.compile(text, source)
+    if core is None:
+        raise FormatError(source, errors)
+    return Model(core)
+
+
+def load(path):
+    """Reads and compiles a mechanism file (format v1). Raises FormatError."""
+    path = str(path)
+    with open(path, "rb") as f:
+        data = f.read()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise FormatError(path, [("", "the file is not UTF-8 text (byte %d)" % e.start,
+                                  "save the file as UTF-8")]) from None
+    return _compile(text, path)
+
+
+def loads(text_or_dict, source="<string>"):
+    """Compiles a mechanism from JSON text or from a dict. Raises FormatError."""
+    if isinstance(text_or_dict, dict):
+        text_or_dict = _json.dumps(text_or_dict)
+    return _compile(text_or_dict, source)
+
+
+class CheckReport:
+    """The `mechkin check --format json` report of one file, as attributes."""
+
+    def __init__(self, data):
+        self._data = data
+
+    def __getattr__(self, key):
+        try:
+            return self._data[key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+    @property
+    def ok(self):
+        return bool(self._data["valid"]) and all(e["held"] for e in self._data["expect"])
+
+    def to_dict(self):
+        return _json.loads(_json.dumps(self._data))
+
+    def __repr__(self):
+        m = self._data.get("mobility", {})
+        return "CheckReport(%r, mobility=%r, driven=%r)" % (self._data.get("name"), m.get("mobility"), m.get("driven"))
+
+
+class Model:
+    """A compiled, immutable mechanism."""
+
+    def __init__(self, core):
+        self._core = core
+        self._info = core.info()
+
+    name = property(lambda self: self._info["name"])
+    source = property(lambda self: self._info["source"])
+    bodies = property(lambda self: list(self._info["bodies"]))
+    joints = property(lambda self: [dict(j) for j in self._info["joints"]])
+    drivers = property(lambda self: list(self._info["drivers"]))
+    outputs = property(lambda self: list(self._info["outputs"]))
+    units = property(lambda self: dict(self._info["units"]))
+    analysis = property(lambda self: None if self._info["analysis"] is None else dict(self._info["analysis"]))
+    warnings = property(lambda self: [Diagnostic(*d) for d in self._info["warnings"]])
+
+    def check(self):
+        """Grübler count, rank mobility, redundancy, idle freedoms, driving status, expectations."""
+        return CheckReport(self._core.check())
+
+    def run(self, order=3, tol=1e-10, solver="newton", formulation="omega", bodies=None, outputs=None,
+            si=False, start=None, end=None, steps=None):
+        """The driven kinematic analysis. Returns a Motion; a run that stops early
+        returns the rows computed with motion.complete False and motion.stop saying why."""
+        norm = lambda sel: None if sel is None else ([sel] if isinstance(sel, str) else list(sel))
+        bodies, outputs = norm(bodies), norm(outputs)
+        core = self._core.run(int(order), float(tol), solver, formulation, bodies, outputs, bool(si),
+                              start, end, steps)
+        return Motion(self, core, dict(order=int(order), si=bool(si), bodies=bodies, outputs=outputs))
+
+    def __reduce__(self):
+        return (_compile, (self._core.text, self._core.source))
+
+    def __repr__(self):
+        return "Model(%r, %d bodies, %d joints, %d drivers)" % (self.name, len(self.bodies), len(self.joints), len(self.drivers))
+
+
+class RunStop:
+    """Why a run ended early: kind is one of 'refused', 'assembly_failed',
+    'singular_position', 'solve_failed' ('none' for a complete run)."""
+
+    def __init__(self, report):
+        self.kind = report["stop"]
+        self.message = report["message"]
+        self.singular = report["singular"]  # dict(t, driver_values, joint_mobility, involved) or None
+
+    def __bool__(self):
+        return self.kind != "none"
+
+    def __repr__(self):
+        return "RunStop(%r, %r)" % (self.kind, self.message.split("\n")[0])
+
+
+class _Series:
+    """Typed access to one body's columns, as zero-copy numpy views."""
+
+    def __init__(self, motion, name):
+        self._m, self._name = motion, name
+
+    def _xyz(self, quantity, order):
+        cols = [self._m._find(quantity, self._name, a, order) for a in range(3)]
+        if None in cols:
+            raise KeyError("%s has no %s of order %d in this motion" % (self._name, quantity, order))
+        return self._m._strided(cols)
+
+    def position(self, order=0):
+        """Origin (order 0) or its order-th time derivative, rows × 3 (global)."""
+        return self._xyz("body_position", order)
+
+    def angular_velocity(self, order=1):
+        """Global angular velocity (order 1) or its derivatives (order 2: acceleration …), rows × 3."""
+        return self._xyz("angular_velocity", order)
+
+    def euler_parameters(self):
+        """Euler parameters e0..e3 (scalar first), rows × 4."""
+        return self._m._strided([self._m._find("euler_parameter", self._name, a, 0) for a in range(4)])
+
+
+class Motion:
+    """The result of a run: a table of rows (time steps) × typed columns.
+
+    values is a read-only rows × columns numpy view of the C++ buffer; t,
+    motion[name], body(...) and diagnostics are views into it (no copies)."""
+
+    def __init__(self, model, core, options):
+        self.model = model
+        self._core = core
+        self._options = options
+        self.columns = core.columns()
+        self._index = {c["name"]: k for k, c in enumerate(self.columns)}
+        self._report = core.report()
+        self.values = core.values
+
+    complete = property(lambda self: self._report["complete"])
+    stop = property(lambda self: RunStop(self._report))
+    set_aside = property(lambda self: list(self._report["set_aside"]), doc="redundant equations set aside")
+    names = property(lambda self: [c["name"] for c in self.columns])
+    t = property(lambda self: self.values[:, 0])
+
+    def __len__(self):
+        return self.values.shape[0]
+
+    def __getitem__(self, name):
+        try:
+            return self.values[:, self._index[name]]
+        except KeyError:
+            raise KeyError("no column %r; motion.names lists them" % name) from None
+
+    def _find(self, quantity, subject, component, order):
+        for k, c in enumerate(self.columns):
+            if (c["quantity"] == quantity and c["subject"] == subject and c["component"] == component
+                    and c["order"] == order):
+                return k
+        return None
+
+    def _strided(self, cols):
+        """Columns at a constant spacing as one rows × len(cols) view."""
+        v = self.values
+        if len(cols) > 1:
+            step = cols[1] - cols[0]
+            if any(b - a != step for a, b in zip(cols, cols[1:])):
+                raise ValueError("columns are not evenly spaced")
+        else:
+            step = 1
+        base = v[:, cols[0]:]
+        return _as_strided(base, shape=(v.shape[0], len(cols)), strides=(v.strides[0], step * v.strides[1]),
+                           writeable=False)
+
+    def body(self, name):
+        if name not in self.model.bodies:
+            raise KeyError("no body %r" % name)
+        return _Series(self, name)
+
+    @property
+    def diagnostics(self):
+        """Per row: newton_iterations, residual, condition, error_bound (rows × (order+1))."""
+        order = self._options["order"]
+        first_bound = self._index["error_bound"]
+        return {
+            "newton_iterations": self["newton_iterations"],
+            "residual": self["residual"],
+            "condition": self["condition"],
+            "error_bound": self._strided(list(range(first_bound, first_bound + order + 1))),
+        }
+
+    def units(self):
+        return {c["name"]: c["unit"] for c in self.columns}
+
+    def to_pandas(self):
+        """A pandas DataFrame with the table's column names (units in df.attrs['units'])."""
+        try:
+            import pandas
+        except ImportError:
+            raise ImportError("Motion.to_pandas() needs pandas: install python3-pandas "
+                              "(apt-get install python3-pandas) or pip install pandas") from None
+        df = pandas.DataFrame(self.values, columns=self.names, copy=False)
+        df.attrs["units"] = self.units()
+        return df
+
+    def to_csv(self, path):
+        """Writes the same CSV as `mechkin run -o path` (atomically)."""
+        self._core.write(str(path), "csv")
+
+    def to_json(self, path):
+        self._core.write(str(path), "json")
+
+    def __reduce__(self):
+        o = self._options
+        return (_rebuild_motion, (self.model, o, _np.array(self.values), self._report))
+
+    def __repr__(self):
+        return "Motion(%d rows × %d columns, complete=%s)" % (self.values.shape[0], self.values.shape[1], self.complete)
+
+
+def _rebuild_motion(model, options, values, report):
+    core = _mechkin.motion_from_state(model._core, options["order"], options["si"], options["bodies"],
+                                      options["outputs"], values, report["complete"], report["stop"],
+                                      report["message"])
+    m = Motion(model, core, options)
+    m._report = dict(report)
+    return m

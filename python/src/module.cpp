@@ -1,0 +1,304 @@
+// _mechkin: the C++ core for Python. Models are immutable and shared; a Motion's
+// table is exposed as a numpy view of the core's own buffer (no copy), kept
+// alive by the Motion object. The GIL is released while solving and writing.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "analysis/check_report.hpp"
+#include "analysis/motion.hpp"
+#include "io/check_report_writer.hpp"
+#include "io/table_writer.hpp"
+#include "model/loader.hpp"
+
+namespace py = pybind11;
+using namespace mechkin;
+
+namespace {
+
+// A compiled model with the text it came from (its pickled form).
+struct LoadedModel {
+  std::shared_ptr<const Model> model;
+  std::vector<Diagnostic> warnings;
+  std::string text, source;
+};
+
+py::list DiagnosticList(const std::vector<Diagnostic>& ds) {
+  py::list out;
+  for (const auto& d : ds) out.append(py::make_tuple(d.pointer, d.message, d.fix));
+  return out;
+}
+
+// (model or None, errors, warnings)
+py::tuple Compile(const std::string& text, const std::string& source) {
+  LoadResult r;
+  {
+    py::gil_scoped_release release;
+    r = LoadMechanismText(text, source);
+  }
+  if (!r.ok()) return py::make_tuple(py::none(), DiagnosticList(r.errors), DiagnosticList(r.warnings));
+  auto m = std::make_shared<LoadedModel>();
+  m->model = std::make_shared<const Model>(std::move(*r.model));
+  m->warnings = r.warnings;
+  m->text = text;
+  m->source = source;
+  return py::make_tuple(m, py::list(), DiagnosticList(r.warnings));
+}
+
+py::object JsonToPython(const nlohmann::json& j) {
+  switch (j.type()) {
+    case nlohmann::json::value_t::null: return py::none();
+    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<long long>());
+    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
+    case nlohmann::json::value_t::string: return py::str(j.get<std::string>());
+    case nlohmann::json::value_t::array: {
+      py::list l;
+      for (const auto& e : j) l.append(JsonToPython(e));
+      return std::move(l);
+    }
+    case nlohmann::json::value_t::object: {
+      py::dict d;
+      for (const auto& [k, v] : j.items()) d[py::str(k)] = JsonToPython(v);
+      return std::move(d);
+    }
+    default: return py::none();
+  }
+}
+
+py::dict CheckModel(const LoadedModel& m) {
+  LoadResult loaded;
+  loaded.model = *m.model;
+  loaded.warnings = m.warnings;
+  nlohmann::json j;
+  {
+    py::gil_scoped_release release;
+    j = CheckReportJson(CheckLoaded(m.source, loaded));
+  }
+  return JsonToPython(j);
+}
+
+const char* QuantityName(Quantity q) {
+  switch (q) {
+    case Quantity::Time: return "time";
+    case Quantity::BodyPosition: return "body_position";
+    case Quantity::EulerParameter: return "euler_parameter";
+    case Quantity::AngularVelocity: return "angular_velocity";
+    case Quantity::PointPosition: return "point";
+    case Quantity::Distance: return "distance";
+    case Quantity::JointAngle: return "joint_angle";
+    case Quantity::JointSlide: return "joint_slide";
+    case Quantity::NewtonIterations: return "newton_iterations";
+    case Quantity::Residual: return "residual";
+    case Quantity::Condition: return "condition";
+    case Quantity::ErrorBound: return "error_bound";
+  }
+  return "";
+}
+
+const char* StopName(StopKind k) {
+  switch (k) {
+    case StopKind::None: return "none";
+    case StopKind::Refused: return "refused";
+    case StopKind::AssemblyFailed: return "assembly_failed";
+    case StopKind::SingularPosition: return "singular_position";
+    case StopKind::SolveFailed: return "solve_failed";
+    case StopKind::Interrupted: return "interrupted";
+  }
+  return "";
+}
+
+StopKind StopFromName(const std::string& s) {
+  for (StopKind k : {StopKind::None, StopKind::Refused, StopKind::AssemblyFailed, StopKind::SingularPosition,
+                     StopKind::SolveFailed, StopKind::Interrupted})
+    if (s == StopName(k)) return k;
+  return StopKind::SolveFailed;
+}
+
+// A Motion with the model it was computed from (the layout refers to it).
+struct PyMotion {
+  std::shared_ptr<const Model> model;
+  std::unique_ptr<Motion> motion;
+};
+
+TableOptions MakeTableOptions(int order, bool si, const std::optional<std::vector<std::string>>& bodies,
+                              const std::optional<std::vector<std::string>>& outputs) {
+  TableOptions t;
+  t.order = order;
+  t.si = si;
+  t.all_bodies = !bodies.has_value();
+  t.all_outputs = !outputs.has_value();
+  if (bodies) t.bodies = *bodies;
+  if (outputs) t.outputs = *outputs;
+  return t;
+}
+
+std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, int order, double tol, const std::string& solver,
+                                   const std::string& formulation, const std::optional<std::vector<std::string>>& bodies,
+                                   const std::optional<std::vector<std::string>>& outputs, bool si,
+                                   std::optional<double> start, std::optional<double> end, std::optional<int> steps) {
+  auto model = m.model;
+  if (start || end || steps) {
+    auto copy = std::make_shared<Model>(*m.model);
+    if (!copy->analysis) copy->analysis = Analysis{};
+    if (start) copy->analysis->start = *start;
+    if (end) copy->analysis->end = *end;
+    if (steps) copy->analysis->steps = *steps;
+    if (!(copy->analysis->end > copy->analysis->start) || copy->analysis->steps < 1)
+      throw py::value_error("need end > start and steps >= 1");
+    model = copy;
+  }
+  if (solver != "newton" && solver != "ceres") throw py::value_error("solver must be 'newton' or 'ceres'");
+  if (formulation != "omega" && formulation != "p") throw py::value_error("formulation must be 'omega' or 'p'");
+  AnalysisOptions o;
+  o.order = order;
+  o.tolerance = tol;
+  o.solver = solver == "ceres" ? PositionSolver::Ceres : PositionSolver::Newton;
+  o.formulation = formulation == "p" ? Formulation::P : Formulation::Omega;
+  std::string why;
+  if (!o.IsValid(&why)) throw py::value_error(why);
+  const TableOptions table = MakeTableOptions(order, si, bodies, outputs);
+  auto out = std::make_shared<PyMotion>();
+  out->model = model;
+  try {
+    MotionLayout probe(*model, table);  // selection errors as ValueError, before releasing the GIL
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+  {
+    py::gil_scoped_release release;
+    out->motion = std::make_unique<Motion>(RunMotion(*model, o, table));
+  }
+  return out;
+}
+
+std::shared_ptr<PyMotion> MotionFromState(const LoadedModel& m, int order, bool si,
+                                          const std::optional<std::vector<std::string>>& bodies,
+                                          const std::optional<std::vector<std::string>>& outputs,
+                                          py::array_t<double, py::array::c_style | py::array::forcecast> values,
+                                          bool complete, const std::string& stop, const std::string& message) {
+  auto out = std::make_shared<PyMotion>();
+  out->model = m.model;
+  out->motion = std::make_unique<Motion>(MotionLayout(*m.model, MakeTableOptions(order, si, bodies, outputs)));
+  if (values.ndim() != 2 || values.shape(1) != out->motion->cols()) throw py::value_error("values do not fit the layout");
+  out->motion->mutable_values().assign(values.data(), values.data() + values.size());
+  out->motion->complete = complete;
+  out->motion->stop.kind = StopFromName(stop);
+  out->motion->stop.message = message;
+  return out;
+}
+
+py::list Columns(const PyMotion& pm) {
+  py::list out;
+  for (const auto& c : pm.motion->columns()) {
+    py::dict d;
+    d["name"] = c.name;
+    d["unit"] = c.unit;
+    d["quantity"] = QuantityName(c.quantity);
+    d["subject"] = c.subject;
+    d["component"] = c.component;
+    d["order"] = c.order;
+    out.append(d);
+  }
+  return out;
+}
+
+py::dict Report(const PyMotion& pm) {
+  const Motion& m = *pm.motion;
+  py::dict d;
+  d["complete"] = m.complete;
+  d["stop"] = StopName(m.stop.kind);
+  d["message"] = m.stop.message;
+  if (m.stop.singular) {
+    py::dict s;
+    s["t"] = m.stop.singular->t;
+    s["driver_values"] = m.stop.singular->driver_values;
+    s["joint_mobility"] = m.stop.singular->joint_mobility;
+    s["involved"] = m.stop.singular->involved;
+    d["singular"] = s;
+  } else {
+    d["singular"] = py::none();
+  }
+  d["set_aside"] = m.report.set_aside;
+  d["assembly_iterations"] = m.report.assembly_iterations;
+  d["blocks"] = m.report.blocks;
+  d["blocks_solved"] = m.report.blocks_solved;
+  std::vector<double> us;
+  for (const auto& s : m.report.steps) us.push_back(s.solve_seconds * 1e6);
+  d["solve_us"] = us;
+  return d;
+}
+
+// rows × cols view of the core's buffer; `self` (the Python Motion) is its base.
+py::array Values(py::object self) {
+  const PyMotion& pm = self.cast<const PyMotion&>();
+  const Motion& m = *pm.motion;
+  const ssize_t rows = m.rows(), cols = m.cols();
+  py::array a(py::dtype::of<double>(), {rows, cols}, {static_cast<ssize_t>(sizeof(double)) * cols, static_cast<ssize_t>(sizeof(double))},
+              m.values().data(), self);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+void ToTable(const PyMotion& pm, const std::string& path, const std::string& format) {
+  std::string why;
+  bool ok;
+  {
+    py::gil_scoped_release release;
+    ok = WriteMotion(*pm.motion, format == "json" ? TableFormat::Json : TableFormat::Csv, path, &why);
+  }
+  if (!ok) throw std::runtime_error(why);
+}
+
+py::dict ModelInfo(const LoadedModel& lm) {
+  const Model& m = *lm.model;
+  py::dict d;
+  d["name"] = m.name;
+  d["source"] = lm.source;
+  py::list bodies, joints, drivers, outputs;
+  for (const auto& b : m.bodies) bodies.append(b.name);
+  for (const auto& j : m.joints)
+    joints.append(py::dict(py::arg("name") = j.name, py::arg("type") = JointTypeName(j.type),
+                           py::arg("body1") = m.BodyName(j.body1), py::arg("body2") = m.BodyName(j.body2)));
+  for (const auto& dr : m.drivers) drivers.append(dr.name);
+  for (const auto& o : m.outputs) outputs.append(o.name);
+  d["bodies"] = bodies;
+  d["joints"] = joints;
+  d["drivers"] = drivers;
+  d["outputs"] = outputs;
+  d["units"] = py::dict(py::arg("length") = m.units.length_name, py::arg("angle") = m.units.angle_name);
+  d["warnings"] = DiagnosticList(lm.warnings);
+  if (m.analysis)
+    d["analysis"] = py::dict(py::arg("start") = m.analysis->start, py::arg("end") = m.analysis->end,
+                             py::arg("steps") = m.analysis->steps);
+  else
+    d["analysis"] = py::none();
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_mechkin, mod) {
+  mod.doc() = "mechkin core (C++); use the `mechkin` package";
+  py::class_<LoadedModel, std::shared_ptr<LoadedModel>>(mod, "CoreModel")
+      .def_readonly("text", &LoadedModel::text)
+      .def_readonly("source", &LoadedModel::source)
+      .def("info", &ModelInfo)
+      .def("check", &CheckModel)
+      .def("run", &RunModel, py::arg("order"), py::arg("tol"), py::arg("solver"), py::arg("formulation"),
+           py::arg("bodies"), py::arg("outputs"), py::arg("si"), py::arg("start"), py::arg("end"), py::arg("steps"));
+  py::class_<PyMotion, std::shared_ptr<PyMotion>>(mod, "CoreMotion")
+      .def_property_readonly("values", &Values)
+      .def("columns", &Columns)
+      .def("report", &Report)
+      .def("write", &ToTable, py::arg("path"), py::arg("format") = "csv")
+      .def_property_readonly("order", [](const PyMotion& m) { return m.motion->layout().options().order; })
+      .def_property_readonly("si", [](const PyMotion& m) { return m.motion->layout().options().si; });
+  mod.def("compile", &Compile, py::arg("text"), py::arg("source"));
+  mod.def("motion_from_state", &MotionFromState);
+}

@@ -1,0 +1,107 @@
+#include "analysis/assembly.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace mechkin {
+
+double DesignDriverValue(const Model& m, const Driver& d) {
+  if (d.kind != DriverKind::Distance) return 0;
+  auto global = [&](BodyIndex b, const Vec3& s) -> Vec3 {
+    return b == kGround ? s : Vec3(m.bodies[b].position + CalcA(m.bodies[b].euler) * s);
+  };
+  return (global(d.body2, d.point2) - global(d.body1, d.point1)).norm();
+}
+
+void AimRotationDrivers(const ConstraintSystem& sys, SystemState* s) {
+  for (size_t e = 0; e < sys.entries().size(); ++e) {
+    const ConstraintEntry& en = sys.entries()[e];
+    if (en.from_driver && en.constraint->HasAngle()) s->angle_ref[e] = s->driver_values[en.source].c[0];
+  }
+}
+
+std::string DescribeResiduals(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& rows,
+                              const Eigen::VectorXd& scales, int count) {
+  Eigen::VectorXd phi;
+  CalcPhi(sys, s, &phi);
+  std::vector<std::pair<double, int>> r;
+  for (size_t k = 0; k < rows.size(); ++k) r.emplace_back(std::abs(phi[rows[k]]) * scales[k], rows[k]);
+  std::sort(r.rbegin(), r.rend());
+  const Units& u = sys.model().units;
+  std::ostringstream o;
+  for (int k = 0; k < count && k < static_cast<int>(r.size()); ++k) {
+    const auto [e, local] = sys.Locate(r[k].second);
+    const Constraint& c = *sys.entries()[e].constraint;
+    const double miss = c.Misfit(MakeInput(sys, s, e), local, phi[r[k].second]);
+    o << "\n    " << sys.DescribeRow(r[k].second) << ": misses by ";
+    if (c.LengthPower() == 0) o << std::abs(miss) / u.angle_to_si << " " << u.angle_name;
+    else o << std::abs(miss) / u.length_to_si << " " << u.length_name;
+  }
+  return o.str();
+}
+
+bool AssembleDesignPose(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
+                        std::string* message) {
+  const Model& model = sys.model();
+  for (size_t d = 0; d < model.drivers.size(); ++d)
+    s->driver_values[d] = Jet::Constant(DesignDriverValue(model, model.drivers[d]));
+  AimRotationDrivers(sys, s);
+  if (6 * sys.num_bodies() > 1200) return true;  // dense min-norm too costly: start from the file's pose
+  SolveOptions rough = solve;
+  rough.max_iterations = 100;
+  const std::vector<int> all = AllRows(sys);
+  const SolveSummary a = AssembleMinNorm(sys, all, rough, s);
+  *iterations += a.iterations;
+  if (a.success) return true;
+  *message = "the design pose cannot be assembled (scaled residual " + std::to_string(a.residual) +
+             "); the equations that cannot close:" + DescribeResiduals(sys, *s, all, RowScales(sys, all), 3) +
+             "\n  Check the lengths and joint positions in the file.";
+  return false;
+}
+
+namespace {
+
+// Number of continuation increments: at most 10° per rotation driver and 5 % of
+// the characteristic length per translation or distance driver.
+int ContinuationSteps(const Model& model, const std::vector<Jet>& target) {
+  double worst = 0;
+  for (size_t d = 0; d < model.drivers.size(); ++d) {
+    const double delta = std::abs(target[d].c[0] - DesignDriverValue(model, model.drivers[d]));
+    const bool angle = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation;
+    worst = std::max(worst, delta / (angle ? 10 * M_PI / 180 : 0.05 * model.characteristic_length));
+  }
+  return std::max(1, static_cast<int>(std::ceil(worst)));
+}
+
+}  // namespace
+
+bool ContinueToStart(KinematicsWorkspace& ws, double start, const SolveOptions& solve, SystemState* s,
+                     int* iterations, std::string* message) {
+  const ConstraintSystem& sys = ws.system();
+  const Model& model = sys.model();
+  EvalDriverFunctions(model, start, s);
+  const std::vector<Jet> target = s->driver_values;
+  const int substeps = ContinuationSteps(model, target);
+  SolveOptions o = solve;
+  o.max_iterations = 50;
+  for (int k = 1; k <= substeps; ++k) {
+    const double lambda = static_cast<double>(k) / substeps;
+    for (size_t d = 0; d < model.drivers.size(); ++d) {
+      const double v0 = DesignDriverValue(model, model.drivers[d]);
+      s->driver_values[d] = Jet::Constant(v0 + lambda * (target[d].c[0] - v0));
+    }
+    AimRotationDrivers(sys, s);
+    const SolveSummary r = ws.newton().Solve(o, s);
+    *iterations += r.iterations;
+    if (!r.success) {
+      *message = "cannot reach the drivers' values at t = start from the design pose (" + r.message +
+                 "); largest residuals:" + DescribeResiduals(sys, *s, ws.active(), ws.newton().scales(), 3);
+      return false;
+    }
+    UpdateAngleReferences(sys, s);
+  }
+  return true;
+}
+
+}  // namespace mechkin

@@ -1,0 +1,31 @@
+// Getting a run to its first row: the design pose assembled with every driver
+// at its design value, then continuation of the drivers to their values at
+// `start` in small increments, so that the branch connected to the design pose
+// is the one followed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "kinematics/workspace.hpp"
+
+namespace mechkin {
+
+/// The value a driver has at the design pose: angles and slides are 0 there
+/// (format v1); a distance driver gives the design distance itself.
+double DesignDriverValue(const Model& model, const Driver& driver);
+/// Points the multi-turn angle of rotation drivers at their target f(t).
+void AimRotationDrivers(const ConstraintSystem& sys, SystemState* s);
+/// The `count` worst-closing rows, each with how far it misses in file units.
+std::string DescribeResiduals(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& rows,
+                              const Eigen::VectorXd& scales, int count);
+
+/// Min-norm assembly of the design pose (all rows, drivers at design values).
+/// On failure returns false with the explanation in *message.
+bool AssembleDesignPose(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
+                        std::string* message);
+/// Continuation from the design driver values to those at t = start.
+bool ContinueToStart(KinematicsWorkspace& ws, double start, const SolveOptions& solve, SystemState* s,
+                     int* iterations, std::string* message);
+
+}  // namespace mechkin

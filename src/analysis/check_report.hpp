@@ -1,0 +1,54 @@
+// The typed result of `mechkin check` for one file: validation diagnostics,
+// counts, the Grübler–Kutzbach count, the rank-based mobility report and the
+// file's `expect` assertions. Every front end (CLI text and JSON, Python) reads
+// this object; the renderers live in io/check_report_writer.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mobility/mobility.hpp"
+#include "model/loader.hpp"
+
+namespace mechkin {
+
+/// An expected or actual value of an `expect` key: a count, a word, or absent
+/// (not computed, e.g. when the design pose does not assemble).
+struct ExpectValue {
+  enum class Kind { Absent, Count, Word } kind = Kind::Absent;
+  int count = 0;
+  std::string word;
+  static ExpectValue Of(int n) { return {Kind::Count, n, ""}; }
+  static ExpectValue Of(const std::string& w) { return {Kind::Word, 0, w}; }
+  bool operator==(const ExpectValue& o) const { return kind == o.kind && count == o.count && word == o.word; }
+};
+
+struct ExpectationResult {
+  std::string key;  // grubler, mobility, redundant, idle, driven
+  ExpectValue expected, actual;
+  bool held = false;
+};
+
+struct CheckReport {
+  std::string file;
+  bool valid = false;
+  std::vector<Diagnostic> errors, warnings;
+  std::string name;
+  int bodies = 0, drivers = 0;
+  std::vector<std::pair<std::string, int>> joints;  // type name → count, in first-seen order
+  int grubler = 0;
+  int dof_after_drivers_count = 0;  // Grübler count − drivers
+  std::optional<MobilityReport> mobility;
+  std::vector<ExpectationResult> expectations;
+  /// Valid and every expectation held.
+  bool ok() const;
+};
+
+/// Checks one loaded file (never throws for bad input).
+CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded);
+/// Reads and checks one file.
+CheckReport CheckFile(const std::string& path);
+
+}  // namespace mechkin

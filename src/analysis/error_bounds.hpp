@@ -1,0 +1,14 @@
+// Relative error bounds per derivative order from the condition estimate.
+#pragma once
+
+namespace mechkin {
+
+/// With κ the condition estimate, r the scaled residual and u the unit round-off:
+///   e_0 = κ·max(r, 4u),   e_k = 8u·κ^k + κ·e_0   (k ≥ 1):
+/// round-off of each back-solve is amplified by κ and enters the next order's
+/// right-hand side; the position error e_0 perturbs Φ_q itself, costing one more κ.
+/// Relative to the magnitude of q^(k) over the motion. Checked against closed forms
+/// near a dead centre in tests/extremes/assembly_test.cpp. Fills bound[0..max_order].
+void CalcErrorBounds(double condition, double residual, int max_order, double* bound);
+
+}  // namespace mechkin

@@ -1,0 +1,250 @@
+#include "analysis/motion.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace mechkin {
+namespace {
+
+const char* kSuffix[] = {"", "_t", "_tt", "_ttt", "_tttt"};
+const char* kPer[] = {"", "/s", "/s^2", "/s^3", "/s^4"};
+const char* kXyz[] = {".x", ".y", ".z"};
+
+std::string UnitOfOrder(const std::string& unit, int k) {
+  return unit.empty() ? (k ? std::string("1") + kPer[k] : "") : unit + kPer[k];
+}
+
+// Jet of each vector component from its derivatives, so that products and norms
+// of derivative series (slides, distances) follow the Leibniz rule.
+std::array<Jet, 3> VecJet(const Vec3* d, int order) {
+  std::array<Jet, 3> j;
+  static constexpr double kInvFact[] = {1, 1, 0.5, 1.0 / 6, 1.0 / 24};
+  for (int a = 0; a < 3; ++a)
+    for (int k = 0; k <= order; ++k) j[a].c[k] = d[k][a] * kInvFact[k];
+  return j;
+}
+
+bool Selected(bool all, const std::vector<std::string>& names, const std::string& name) {
+  return all || std::find(names.begin(), names.end(), name) != names.end();
+}
+
+}  // namespace
+
+std::string ColumnDescriptor::Header() const { return unit.empty() ? name : name + " [" + unit + "]"; }
+
+MotionLayout::MotionLayout(const Model& model, const TableOptions& options) : options_(options) {
+  if (!options.si) {
+    len_ = 1 / model.units.length_to_si;
+    ang_ = 1 / model.units.angle_to_si;
+  }
+  columns_.push_back({"t", "s", "", Quantity::Time});
+  for (int b = 0; b < model.num_bodies(); ++b)
+    if (Selected(options.all_bodies, options.bodies, model.bodies[b].name)) AddBody(model, b);
+  for (const auto& sel : options.bodies)
+    if (!options.all_bodies && std::none_of(model.bodies.begin(), model.bodies.end(), [&](const Body& b) { return b.name == sel; }))
+      throw std::invalid_argument("--bodies: no body named '" + sel + "'");
+  for (size_t o = 0; o < model.outputs.size(); ++o)
+    if (Selected(options.all_outputs, options.outputs, model.outputs[o].name)) AddOutput(model, static_cast<int>(o));
+  for (const auto& sel : options.outputs)
+    if (!options.all_outputs && std::none_of(model.outputs.begin(), model.outputs.end(), [&](const Output& o) { return o.name == sel; }))
+      throw std::invalid_argument("--outputs: no output named '" + sel + "'");
+  columns_.push_back({"newton_iterations", "", "", Quantity::NewtonIterations});
+  columns_.push_back({"residual", "", "", Quantity::Residual});
+  columns_.push_back({"condition", "", "", Quantity::Condition});
+  for (int k = 0; k <= options.order; ++k)
+    columns_.push_back({std::string("error_bound") + kSuffix[k], "", "", Quantity::ErrorBound, -1, -1, k});
+}
+
+void MotionLayout::AddSeries(Quantity q, const std::string& subject, int index, const std::string& name, int component,
+                             const std::string& unit, int first_order) {
+  for (int k = first_order; k <= options_.order; ++k)
+    columns_.push_back({name + kSuffix[k], UnitOfOrder(unit, k), subject, q, index, component, k});
+}
+
+// Body columns, format-v1 order: x, y, z with derivatives; e0..e3; ωx, ωy, ωz
+// with derivatives, where ".wx" is order 1 and ".wx_t" order 2.
+void MotionLayout::AddBody(const Model& model, int b) {
+  items_.push_back({true, b});
+  const std::string& nm = model.bodies[b].name;
+  const std::string L = options_.si ? "m" : model.units.length_name;
+  const std::string A = options_.si ? "rad" : model.units.angle_name;
+  for (int a = 0; a < 3; ++a) AddSeries(Quantity::BodyPosition, nm, b, nm + kXyz[a], a, L, 0);
+  for (int a = 0; a < 4; ++a)
+    columns_.push_back({nm + ".e" + std::to_string(a), "", nm, Quantity::EulerParameter, b, a, 0});
+  for (int a = 0; a < 3; ++a)
+    for (int k = 1; k <= options_.order; ++k)
+      columns_.push_back({nm + ".w" + std::string(1, "xyz"[a]) + kSuffix[k - 1], UnitOfOrder(A, k), nm,
+                          Quantity::AngularVelocity, b, a, k});
+}
+
+void MotionLayout::AddOutput(const Model& model, int o) {
+  items_.push_back({false, o});
+  const Output& out = model.outputs[o];
+  const std::string L = options_.si ? "m" : model.units.length_name;
+  const std::string A = options_.si ? "rad" : model.units.angle_name;
+  if (out.kind == OutputKind::Point) {
+    for (int a = 0; a < 3; ++a) AddSeries(Quantity::PointPosition, out.name, o, out.name + kXyz[a], a, L, 0);
+  } else if (out.kind == OutputKind::Distance) {
+    AddSeries(Quantity::Distance, out.name, o, out.name, -1, L, 0);
+  } else {
+    const JointType jt = model.joints[out.joint].type;
+    if (jt == JointType::Revolute) {
+      AddSeries(Quantity::JointAngle, out.name, o, out.name, -1, A, 0);
+    } else if (jt == JointType::Prismatic) {
+      AddSeries(Quantity::JointSlide, out.name, o, out.name, -1, L, 0);
+    } else {
+      AddSeries(Quantity::JointAngle, out.name, o, out.name + ".angle", -1, A, 0);
+      AddSeries(Quantity::JointSlide, out.name, o, out.name + ".slide", -1, L, 0);
+    }
+  }
+}
+
+int MotionLayout::Find(const std::string& name) const {
+  for (size_t c = 0; c < columns_.size(); ++c)
+    if (columns_[c].name == name) return static_cast<int>(c);
+  return -1;
+}
+
+int MotionLayout::Find(Quantity q, int subject_index, int component, int order) const {
+  for (size_t c = 0; c < columns_.size(); ++c) {
+    const ColumnDescriptor& d = columns_[c];
+    if (d.quantity == q && d.subject_index == subject_index && d.component == component && d.order == order)
+      return static_cast<int>(c);
+  }
+  return -1;
+}
+
+std::vector<int> MotionLayout::NeededBodies(const Model& model) const {
+  std::vector<char> need(model.num_bodies(), 0);
+  for (const Item& it : items_) {
+    if (it.is_body) { need[it.index] = 1; continue; }
+    for (BodyIndex b : {model.outputs[it.index].body1, model.outputs[it.index].body2})
+      if (b != kGround) need[b] = 1;
+  }
+  std::vector<int> bodies;
+  for (int b = 0; b < model.num_bodies(); ++b)
+    if (need[b]) bodies.push_back(b);
+  return bodies;
+}
+
+RowEvaluator::RowEvaluator(const Model& model, const MotionLayout& layout)
+    : model_(model), layout_(layout), angle_ref_(model.outputs.size(), 0.0) {}
+
+void RowEvaluator::Evaluate(const SystemState& s, const StepDiagnostics& d, double* row) {
+  const int order = layout_.options().order;
+  double* out = row;
+  *out++ = d.t;
+  for (const auto& it : layout_.items())
+    out = it.is_body ? BodyValues(s.bodies[it.index], out) : OutputValues(s, it.index, out);
+  *out++ = d.iterations;
+  *out++ = d.residual;
+  *out++ = d.condition;
+  for (int k = 0; k <= order; ++k) *out++ = d.error_bound[k];
+}
+
+double* RowEvaluator::BodyValues(const BodyKinematics& b, double* out) const {
+  const int order = layout_.options().order;
+  const double len = layout_.length_factor(), ang = layout_.angle_factor();
+  for (int a = 0; a < 3; ++a)
+    for (int k = 0; k <= order; ++k) *out++ = b.r[k][a] * len;
+  for (int a = 0; a < 4; ++a) *out++ = b.p[a];
+  // Global angular velocity and derivatives from the body-frame ones (constraints.md §1.3):
+  // ω = Aω', ω̇ = Aω̇', ω̈ = A(ω̈' + ω'×ω̇'), ω⃛ = A(ω⃛' + 2ω'×ω̈' + ω'×(ω'×ω̇')).
+  Vec3 wg[4];
+  wg[0] = b.A * b.w[0];
+  wg[1] = b.A * b.w[1];
+  wg[2] = b.A * (b.w[2] + b.w[0].cross(b.w[1]));
+  wg[3] = b.A * (b.w[3] + 2 * b.w[0].cross(b.w[2]) + b.w[0].cross(b.w[0].cross(b.w[1])));
+  for (int a = 0; a < 3; ++a)
+    for (int k = 1; k <= order; ++k) *out++ = wg[k - 1][a] * ang;
+  return out;
+}
+
+double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
+  const int order = layout_.options().order;
+  const double len = layout_.length_factor(), ang = layout_.angle_factor();
+  const Output& op = model_.outputs[o];
+  const BodyKinematics& b1 = s.Kin(op.body1);
+  const BodyKinematics& b2 = s.Kin(op.body2);
+  if (op.kind == OutputKind::Point) {
+    for (int a = 0; a < 3; ++a)
+      for (int k = 0; k <= order; ++k) *out++ = b1.PointDerivative(op.point1, k)[a] * len;
+    return out;
+  }
+  if (op.kind == OutputKind::Distance) {
+    Vec3 d[5];
+    for (int k = 0; k <= order; ++k) d[k] = b2.PointDerivative(op.point2, k) - b1.PointDerivative(op.point1, k);
+    const auto j = VecJet(d, order);
+    const Jet dist = Sqrt(j[0] * j[0] + j[1] * j[1] + j[2] * j[2]);
+    for (int k = 0; k <= order; ++k) *out++ = dist.Derivative(k) * len;
+    return out;
+  }
+  const Joint& jt = model_.joints[op.joint];
+  if (jt.type != JointType::Prismatic) {
+    // θ = atan2(g_iᵀf_j, f_iᵀf_j), continuous from the design pose;
+    // θ^(k) = h'_jᵀω_j'^(k−1) − h'_iᵀω_i'^(k−1) on the joint.
+    const Vec3 fj = b2.A * jt.frame2.f;
+    const double th = UnwrapAngle((b1.A * jt.frame1.g).dot(fj), (b1.A * jt.frame1.f).dot(fj), angle_ref_[o]);
+    angle_ref_[o] = th;
+    *out++ = th * ang;
+    for (int k = 1; k <= order; ++k) *out++ = (jt.frame2.h.dot(b2.w[k - 1]) - jt.frame1.h.dot(b1.w[k - 1])) * ang;
+  }
+  if (jt.type != JointType::Revolute) {
+    // s = h_iᵀ(P_j − P_i), differentiated by the Leibniz rule on jets.
+    Vec3 d[5], hv[5];
+    for (int k = 0; k <= order; ++k) {
+      d[k] = b2.PointDerivative(jt.frame2.origin, k) - b1.PointDerivative(jt.frame1.origin, k);
+      hv[k] = b1.VectorDerivative(jt.frame1.h, k);
+    }
+    const auto jd = VecJet(d, order), jh = VecJet(hv, order);
+    const Jet sl = jh[0] * jd[0] + jh[1] * jd[1] + jh[2] * jd[2];
+    for (int k = 0; k <= order; ++k) *out++ = sl.Derivative(k) * len;
+  }
+  return out;
+}
+
+std::vector<double> Motion::Column(int col) const {
+  std::vector<double> c(rows());
+  for (int r = 0; r < rows(); ++r) c[r] = at(r, col);
+  return c;
+}
+
+bool Motion::Append(const double* row, int size) {
+  values_.insert(values_.end(), row, row + size);
+  return true;
+}
+
+MotionStop StopOf(const AnalysisReport& report) {
+  MotionStop stop;
+  stop.kind = report.stop;
+  stop.message = report.message;
+  stop.singular = report.singular;
+  return stop;
+}
+
+AnalysisReport RunIntoSink(const Model& model, const AnalysisOptions& options, const MotionLayout& layout,
+                           RowSink* sink) {
+  RowEvaluator eval(model, layout);
+  std::vector<double> row(layout.size());
+  return RunKinematicAnalysis(model, options, [&](const SystemState& s, const StepDiagnostics& d) {
+    eval.Evaluate(s, d, row.data());
+    return sink->Append(row.data(), layout.size());
+  });
+}
+
+Motion RunMotion(const Model& model, const AnalysisOptions& options, const TableOptions& table) {
+  Motion motion{MotionLayout(model, table)};
+  AnalysisOptions o = options;
+  o.order = table.order;
+  if (!table.all_bodies || !table.all_outputs) {
+    o.needed_bodies = motion.layout().NeededBodies(model);
+    if (o.needed_bodies.empty()) o.needed_bodies.push_back(-1);  // nothing requested: solve no block
+  }
+  if (model.analysis) motion.mutable_values().reserve(static_cast<size_t>(model.analysis->steps + 1) * motion.cols());
+  motion.report = RunIntoSink(model, o, motion.layout(), &motion);
+  motion.complete = motion.report.complete;
+  motion.stop = StopOf(motion.report);
+  return motion;
+}
+
+}  // namespace mechkin

@@ -1,0 +1,175 @@
+// The typed result of a driven run (issue "One library core with typed results").
+//
+// MotionLayout describes the columns of a motion table once per model and
+// selection: each column carries what it is (quantity, subject, component,
+// derivative order, unit), so no consumer ever has to read meaning out of a
+// column name. RowEvaluator turns a solved SystemState into one row of values
+// in the layout's units (joint coordinates are computed here, continuously
+// from the design pose). Motion keeps rows in one row-major buffer that
+// front ends can view without copying; the CLI streams rows to a file instead.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/kinematic_analysis.hpp"
+
+namespace mechkin {
+
+enum class Quantity {
+  Time,
+  BodyPosition,       // r, component x/y/z, order 0..4
+  EulerParameter,     // p, component e0..e3 (order 0)
+  AngularVelocity,    // global ω and derivatives, order 1..4 (".wx" is order 1)
+  PointPosition,      // output point, x/y/z
+  Distance,           // output distance
+  JointAngle,         // revolute angle / cylindrical & screw ".angle"
+  JointSlide,         // prismatic slide / cylindrical & screw ".slide"
+  NewtonIterations,
+  Residual,
+  Condition,
+  ErrorBound,         // relative error bound of the order
+};
+
+/// One column: `name` is the format-v1 column name without the unit ("crank.x_t"),
+/// `subject` the body or output it belongs to ("" for time and diagnostics).
+struct ColumnDescriptor {
+  std::string name, unit, subject;
+  Quantity quantity = Quantity::Time;
+  int subject_index = -1;  // body index or output index
+  int component = -1;      // 0..2 for x/y/z, 0..3 for e0..e3, −1 when none
+  int order = 0;           // time-derivative order
+  /// "crank.x_t [mm/s]" as in the table's header (no brackets when unitless).
+  std::string Header() const;
+  bool IsDiagnostic() const { return quantity >= Quantity::NewtonIterations; }
+};
+
+/// What a table shows: derivative order, units, and the selected bodies/outputs.
+struct TableOptions {
+  int order = 3;
+  bool si = false;
+  bool all_bodies = true, all_outputs = true;
+  std::vector<std::string> bodies, outputs;  // selections when not all
+};
+
+class MotionLayout {
+ public:
+  /// Throws std::invalid_argument for a selected body/output that does not exist.
+  MotionLayout(const Model& model, const TableOptions& options);
+
+  const std::vector<ColumnDescriptor>& columns() const { return columns_; }
+  int size() const { return static_cast<int>(columns_.size()); }
+  const TableOptions& options() const { return options_; }
+  /// Index of the column named `name` (without unit), or −1.
+  int Find(const std::string& name) const;
+  /// First column of a body's or output's series of the given quantity, component and order, or −1.
+  int Find(Quantity q, int subject_index, int component, int order) const;
+  double length_factor() const { return len_; }  // SI → table unit
+  double angle_factor() const { return ang_; }
+  /// Bodies whose motion the selection reads (for the block-by-block path).
+  std::vector<int> NeededBodies(const Model& model) const;
+
+  struct Item { bool is_body; int index; };
+  const std::vector<Item>& items() const { return items_; }
+
+ private:
+  void AddBody(const Model& model, int b);
+  void AddOutput(const Model& model, int o);
+  void AddSeries(Quantity q, const std::string& subject, int index, const std::string& name, int component,
+                 const std::string& unit, int first_order);
+
+  TableOptions options_;
+  std::vector<Item> items_;
+  std::vector<ColumnDescriptor> columns_;
+  double len_ = 1, ang_ = 1;
+};
+
+/// Computes rows of a layout from solved states. Holds the joint-angle
+/// continuity state, so use one evaluator per run.
+class RowEvaluator {
+ public:
+  RowEvaluator(const Model& model, const MotionLayout& layout);
+  /// Writes layout.size() values into `row`.
+  void Evaluate(const SystemState& s, const StepDiagnostics& d, double* row);
+
+ private:
+  double* BodyValues(const BodyKinematics& b, double* out) const;
+  double* OutputValues(const SystemState& s, int o, double* out);
+
+  const Model& model_;
+  const MotionLayout& layout_;
+  std::vector<double> angle_ref_;  // per output: the last joint angle, for continuity
+};
+
+struct MotionStop {
+  StopKind kind = StopKind::None;
+  std::string message;                      // the full explanation
+  std::optional<SingularPosition> singular;  // for SingularPosition
+  /// First line of the message (the `# PARTIAL TABLE:` note).
+  std::string Summary() const { return message.substr(0, message.find('\n')); }
+};
+
+/// Receives rows as the run computes them.
+class RowSink {
+ public:
+  virtual ~RowSink() = default;
+  /// Returns false to stop the run (e.g. a failed write).
+  virtual bool Append(const double* row, int size) = 0;
+};
+
+/// The whole motion in memory: one row-major buffer, rows × columns.
+class Motion : public RowSink {
+ public:
+  explicit Motion(MotionLayout layout) : layout_(std::move(layout)) {}
+
+  const MotionLayout& layout() const { return layout_; }
+  const std::vector<ColumnDescriptor>& columns() const { return layout_.columns(); }
+  int rows() const { return cols() ? static_cast<int>(values_.size() / cols()) : 0; }
+  int cols() const { return layout_.size(); }
+  double at(int row, int col) const { return values_[static_cast<size_t>(row) * cols() + col]; }
+  const std::vector<double>& values() const { return values_; }
+  std::vector<double>& mutable_values() { return values_; }  // for unpickling
+  /// A copy of one column.
+  std::vector<double> Column(int col) const;
+
+  bool complete = false;
+  MotionStop stop;
+  AnalysisReport report;  // assembly, redundancy, blocks, per-step timing
+
+  bool Append(const double* row, int size) override;
+
+ private:
+  MotionLayout layout_;
+  std::vector<double> values_;
+};
+
+/// A Motion filled from solved states (for callers that drive the analysis themselves).
+class MotionRecorder {
+ public:
+  MotionRecorder(const Model& model, const TableOptions& table)
+      : motion_(MotionLayout(model, table)), eval_(model, motion_.layout()), row_(motion_.cols()) {}
+  MotionRecorder(const MotionRecorder&) = delete;
+  MotionRecorder& operator=(const MotionRecorder&) = delete;
+  bool Record(const SystemState& s, const StepDiagnostics& d) {
+    eval_.Evaluate(s, d, row_.data());
+    return motion_.Append(row_.data(), motion_.cols());
+  }
+  Motion& motion() { return motion_; }
+
+ private:
+  Motion motion_;
+  RowEvaluator eval_;
+  std::vector<double> row_;
+};
+
+/// Runs the analysis into `sink` through a RowEvaluator; the report says how it ended.
+AnalysisReport RunIntoSink(const Model& model, const AnalysisOptions& options, const MotionLayout& layout,
+                           RowSink* sink);
+/// Runs the analysis and returns the whole Motion (never throws for a mechanism that
+/// cannot move as asked; the Motion says why it stopped).
+Motion RunMotion(const Model& model, const AnalysisOptions& options, const TableOptions& table);
+/// The stop classification of a report.
+MotionStop StopOf(const AnalysisReport& report);
+
+}  // namespace mechkin

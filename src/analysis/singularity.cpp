@@ -1,0 +1,125 @@
+#include "analysis/singularity.hpp"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "analysis/assembly.hpp"
+
+namespace mechkin {
+namespace {
+
+constexpr int kDenseLimit = 1200;  // columns above which the dense SVDs are skipped
+
+Eigen::MatrixXd SelectRowsOf(const Eigen::MatrixXd& J, const std::vector<int>& rows) {
+  Eigen::MatrixXd out(rows.size(), J.cols());
+  for (size_t k = 0; k < rows.size(); ++k) out.row(k) = J.row(rows[k]);
+  return out;
+}
+
+double SmallestSingularValue(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& rows) {
+  if (6 * sys.num_bodies() > kDenseLimit) return std::nan("");
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(SelectRowsOf(ScaledJacobian(sys, s), rows));
+  return svd.singularValues().size() ? svd.singularValues().tail(1)[0] : 0.0;
+}
+
+// 6n − rank of the joints' scaled Jacobian (relative threshold 1e-6).
+int JointMobility(const ConstraintSystem& sys, const SystemState& s) {
+  const ConstraintSystem joints(sys.model(), false);
+  SystemState js(joints);
+  js.bodies = s.bodies;
+  Eigen::BDCSVD<Eigen::MatrixXd> sj(ScaledJacobian(joints, js));
+  int rank = 0;
+  for (int k = 0; k < sj.singularValues().size(); ++k) rank += sj.singularValues()[k] > 1e-6 * sj.singularValues()[0];
+  return 6 * sys.num_bodies() - rank;
+}
+
+// The sources (joints, drivers) with the largest weights in the left singular
+// vector of σ_min: the equations that become dependent.
+std::vector<std::string> InvolvedEquations(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& rows) {
+  const Eigen::MatrixXd Ja = SelectRowsOf(ScaledJacobian(sys, s), rows);
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(Ja, Eigen::ComputeFullU);
+  const Eigen::VectorXd u = svd.matrixU().col(Ja.rows() - 1);
+  std::vector<std::pair<double, int>> w;
+  for (int k = 0; k < u.size(); ++k) w.emplace_back(std::abs(u[k]), rows[k]);
+  std::sort(w.rbegin(), w.rend());
+  std::vector<std::string> names;
+  for (const auto& [mag, row] : w) {
+    if (mag < 0.1 * w[0].first || names.size() >= 4) break;
+    const std::string src = sys.SourceName(row);
+    if (std::find(names.begin(), names.end(), src) == names.end()) names.push_back(src);
+  }
+  return names;
+}
+
+}  // namespace
+
+SingularPosition LocateSingularity(KinematicsWorkspace& ws, const SystemState& base, double t_lo, double t_hi,
+                                   double sign_lo, double resolution, int predictor_order) {
+  const ConstraintSystem& sys = ws.system();
+  NewtonSolver& newton = ws.newton();
+  SystemState s_lo = base;
+  SolveOptions tight;
+  tight.tolerance = 1e-14;
+  tight.max_iterations = 100;
+  while (t_hi - t_lo > resolution) {
+    const double mid = 0.5 * (t_lo + t_hi);
+    SystemState probe = base;
+    PredictPose(mid - base.t, predictor_order, &probe);
+    EvalDriverFunctions(sys.model(), mid, &probe);
+    AimRotationDrivers(sys, &probe);
+    newton.Solve(tight, &probe);
+    if (newton.Factorize(probe) && newton.JacobianSign() == sign_lo) {
+      t_lo = mid;
+      s_lo = probe;
+    } else {
+      t_hi = mid;
+    }
+  }
+  SingularPosition sp;
+  sp.t = 0.5 * (t_lo + t_hi);
+  EvalDriverFunctions(sys.model(), sp.t, &s_lo);
+  for (const Jet& j : s_lo.driver_values) sp.driver_values.push_back(j.c[0]);
+  if (6 * sys.num_bodies() <= kDenseLimit) {
+    sp.joint_mobility = JointMobility(sys, s_lo);
+    sp.involved = InvolvedEquations(sys, s_lo, newton.rows());
+  }
+  return sp;
+}
+
+std::string SingularityMessage(const Model& model, const SingularPosition& sp) {
+  std::ostringstream o;
+  o.precision(12);
+  o << "singular position at t = " << sp.t << " s";
+  for (size_t d = 0; d < model.drivers.size(); ++d) {
+    const bool angle = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation;
+    o << ", driver `" << model.drivers[d].name << "` = "
+      << sp.driver_values[d] / (angle ? model.units.angle_to_si : model.units.length_to_si) << " "
+      << (angle ? model.units.angle_name : model.units.length_name);
+  }
+  o << "\n  instantaneous mobility of the joints there: " << sp.joint_mobility
+    << " (a dead centre, toggle or change point where branches meet)";
+  if (!sp.involved.empty()) {
+    o << "\n  equations that become dependent: ";
+    for (size_t k = 0; k < sp.involved.size(); ++k) o << (k ? ", `" : "`") << sp.involved[k] << "`";
+  }
+  o << "\n  The run stops here instead of choosing a branch. Try: end the motion before this time, or change "
+       "the geometry so that the mechanism does not pass through this position.";
+  return o.str();
+}
+
+std::string SolveFailureMessage(KinematicsWorkspace& ws, const SystemState& s, double t, int rows_done,
+                                const std::string& why) {
+  const double smin = SmallestSingularValue(ws.system(), s, ws.active());
+  std::ostringstream o;
+  o << "position solve failed at t = " << t << " s after " << rows_done << " rows: " << why
+    << "\n  largest residuals:" << DescribeResiduals(ws.system(), s, ws.active(), ws.newton().scales(), 3)
+    << "\n  smallest singular value of the scaled Φ_q: " << smin
+    << (smin < 1e-6 ? " (singular: a toggle, dead centre or lock-up position)" : "")
+    << "\n  Try: keep the drivers inside the reachable range, start the motion away from the singular "
+       "position, or use more steps.";
+  return o.str();
+}
+
+}  // namespace mechkin

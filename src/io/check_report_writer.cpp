@@ -1,0 +1,154 @@
+#include "io/check_report_writer.hpp"
+
+#include <cstdio>
+
+namespace mechkin {
+namespace {
+
+using nlohmann::json;
+
+json DiagnosticsJson(const std::vector<Diagnostic>& ds) {
+  json a = json::array();
+  for (const auto& d : ds) a.push_back({{"pointer", d.pointer}, {"message", d.message}, {"fix", d.fix}});
+  return a;
+}
+
+json ValueJson(const ExpectValue& v) {
+  switch (v.kind) {
+    case ExpectValue::Kind::Count: return v.count;
+    case ExpectValue::Kind::Word: return v.word;
+    case ExpectValue::Kind::Absent: break;
+  }
+  return nullptr;
+}
+
+json MobilityJson(const MobilityReport& r, int drivers) {
+  json j;
+  j["assembled"] = r.assembled;
+  j["assembly"] = r.assembly_message;
+  if (!r.assembled) return j;
+  j["equations"] = r.equations;
+  j["rank"] = r.rank;
+  j["mobility"] = r.mobility;
+  j["redundant"] = r.redundant;
+  j["rank_threshold"] = kRankThreshold;
+  j["sigma_min_kept"] = r.sigma_min_kept;
+  j["sigma_max_dropped"] = r.sigma_max_dropped;
+  j["redundant_equations"] = json::array();
+  for (const auto& e : r.redundant_equations) j["redundant_equations"].push_back({{"equation", e.description}, {"fixed_by", e.fixed_by}});
+  j["idle"] = json::array();
+  for (const auto& f : r.idle)
+    j["idle"].push_back({{"bodies", f.body}, {"axis", {f.axis.x(), f.axis.y(), f.axis.z()}}, {"description", f.description}});
+  // format v1: DOF after drivers = mobility − number of drivers (negative: over-driven).
+  j["dof_after_drivers"] = r.mobility - drivers;
+  // Rank of joints + drivers together: the freedoms actually left (never negative).
+  j["free_after_drivers"] = r.dof_after_drivers;
+  j["driven"] = DrivingStatusName(r.driving_status);
+  j["conflicting_drivers"] = r.conflicting_drivers;
+  j["remaining_freedoms"] = r.remaining_freedoms;
+  j["verdict"] = r.verdict;
+  j["suggestions"] = r.suggestions;
+  return j;
+}
+
+void PrintMobility(const MobilityReport& m, int drivers, std::ostream& out) {
+  if (!m.assembled) {
+    out << "  mobility: not computed — " << m.assembly_message << "\n";
+    return;
+  }
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "  mobility (rank): %d  [rank %d of %d equations; margin: smallest kept σ %.2e, largest dropped σ %.2e]\n",
+                m.mobility, m.rank, m.equations, m.sigma_min_kept, m.sigma_max_dropped);
+  out << buf << "  redundant equations: " << m.redundant << "\n";
+  for (const auto& e : m.redundant_equations) {
+    out << "    - " << e.description;
+    if (!e.fixed_by.empty()) {
+      out << " is already fixed by joints ";
+      for (size_t k = 0; k < e.fixed_by.size(); ++k) out << (k ? ", " : "") << e.fixed_by[k];
+    }
+    out << "\n";
+  }
+  if (!m.verdict.empty()) out << "  verdict: " << m.verdict << "\n";
+  for (const auto& s : m.suggestions) out << "  suggestion: " << s << "\n";
+  out << "  idle freedoms: " << m.idle.size() << "\n";
+  for (const auto& f : m.idle) out << "    - " << f.description << "\n";
+  out << "  DOF after drivers: " << m.mobility - drivers << " (mobility − drivers; freedoms left by rank: "
+      << m.dof_after_drivers << ") — driven: " << DrivingStatusName(m.driving_status);
+  if (!m.conflicting_drivers.empty()) {
+    out << " (conflicting drivers: ";
+    for (size_t k = 0; k < m.conflicting_drivers.size(); ++k) out << (k ? ", " : "") << m.conflicting_drivers[k];
+    out << ")";
+  }
+  out << "\n";
+  for (const auto& f : m.remaining_freedoms) out << "    - " << f << "\n";
+}
+
+void PrintErrors(const CheckReport& r, std::ostream& out) {
+  out << "INVALID (" << r.errors.size() << (r.errors.size() == 1 ? " error)\n" : " errors)\n");
+  for (const auto& e : r.errors) {
+    out << "  error: " << (e.pointer.empty() ? "(file)" : e.pointer) << ": " << e.message;
+    if (!e.fix.empty()) out << "\n         fix: " << e.fix;
+    out << "\n";
+  }
+}
+
+void PrintSummary(const CheckReport& r, std::ostream& out) {
+  out << (r.name.empty() ? "(unnamed)" : r.name) << "\n";
+  out << "  bodies: " << r.bodies << " moving\n  joints: ";
+  int total = 0;
+  for (size_t k = 0; k < r.joints.size(); ++k) {
+    out << (k ? ", " : "") << r.joints[k].second << " " << r.joints[k].first;
+    total += r.joints[k].second;
+  }
+  out << (r.joints.empty() ? "none" : "") << " (" << total << " total)\n";
+  out << "  drivers: " << r.drivers << "\n";
+  out << "  Grübler–Kutzbach count: " << r.grubler << " (after drivers: " << r.dof_after_drivers_count << ")\n";
+  if (r.mobility) PrintMobility(*r.mobility, r.drivers, out);
+}
+
+}  // namespace
+
+json CheckReportJson(const CheckReport& r) {
+  json j;
+  j["file"] = r.file;
+  j["errors"] = DiagnosticsJson(r.errors);
+  j["warnings"] = DiagnosticsJson(r.warnings);
+  j["valid"] = r.valid;
+  j["expect"] = json::array();
+  for (const auto& e : r.expectations)
+    j["expect"].push_back({{"key", e.key}, {"expected", ValueJson(e.expected)}, {"actual", ValueJson(e.actual)}, {"held", e.held}});
+  if (!r.valid) return j;
+  j["name"] = r.name;
+  j["bodies"] = r.bodies;
+  json joints = json::object();
+  for (const auto& [type, count] : r.joints) joints[type] = count;
+  j["joints"] = joints;
+  j["drivers"] = r.drivers;
+  j["grubler"] = r.grubler;
+  j["dof_after_drivers_count"] = r.dof_after_drivers_count;
+  if (r.mobility) j["mobility"] = MobilityJson(*r.mobility, r.drivers);
+  return j;
+}
+
+json CheckReportsJson(const std::vector<CheckReport>& reports) {
+  json doc = {{"mechkin_check", 1}, {"files", json::array()}};
+  bool ok = true;
+  for (const auto& r : reports) {
+    doc["files"].push_back(CheckReportJson(r));
+    ok = ok && r.ok();
+  }
+  doc["ok"] = ok;
+  return doc;
+}
+
+void PrintCheckReport(const CheckReport& r, std::ostream& out) {
+  out << r.file << ": ";
+  if (!r.valid) PrintErrors(r, out);
+  else PrintSummary(r, out);
+  for (const auto& w : r.warnings) out << "  warning: " << w.pointer << ": " << w.message << "\n";
+  for (const auto& e : r.expectations)
+    out << "  expect " << e.key << " = " << ValueJson(e.expected).dump() << ": "
+        << (e.held ? "held" : "FAILED (actual " + ValueJson(e.actual).dump() + ")") << "\n";
+}
+
+}  // namespace mechkin

@@ -1,0 +1,19 @@
+// `mechkin check` reports rendered as text and as JSON, from the typed CheckReport.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <vector>
+
+#include "analysis/check_report.hpp"
+
+namespace mechkin {
+
+/// One file's report as the JSON object of format "mechkin_check": 1.
+nlohmann::json CheckReportJson(const CheckReport& report);
+/// The whole `--format json` document for several files.
+nlohmann::json CheckReportsJson(const std::vector<CheckReport>& reports);
+/// The human-readable report of one file.
+void PrintCheckReport(const CheckReport& report, std::ostream& out);
+
+}  // namespace mechkin

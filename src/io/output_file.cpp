@@ -1,0 +1,214 @@
+#include "io/output_file.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace mechkin {
+namespace {
+
+constexpr size_t kBufferSize = 1 << 16;
+
+bool WriteAll(int fd, const char* data, size_t size, int* err) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      *err = errno;
+      return false;
+    }
+    data += n;
+    size -= static_cast<size_t>(n);
+  }
+  return true;
+}
+
+std::string RealPath(const std::string& p) {
+  char buf[PATH_MAX];
+  return ::realpath(p.c_str(), buf) ? std::string(buf) : std::string();
+}
+
+std::string DirectoryOf(const std::string& path) {
+  const auto slash = path.rfind('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+std::string BaseOf(const std::string& path) {
+  const auto slash = path.rfind('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+}  // namespace
+
+OutputFile::~OutputFile() { Abort(); }
+
+bool OutputFile::Open(const std::string& path, const std::vector<std::string>& inputs, std::string* error,
+                      std::ostream* standard_output) {
+  buffer_.reserve(kBufferSize);
+  if (path.empty() || path == "-") {
+    to_stdout_ = true;
+    stream_ = standard_output;
+    FILE* f = std::tmpfile();
+    fd_ = f ? ::dup(::fileno(f)) : -1;
+    if (f) std::fclose(f);
+    if (fd_ < 0) { *error = std::string("cannot create a temporary file: ") + std::strerror(errno); return false; }
+    return true;
+  }
+  const std::string real = RealPath(path);
+  for (const auto& in : inputs)
+    if (!real.empty() && real == RealPath(in)) {
+      *error = "refusing to write the table onto the input file '" + in + "': choose another output path";
+      return false;
+    }
+  struct stat st {};
+  target_ = real.empty() ? path : real;  // follow a symlink to the real target; the link stays
+  if (::stat(target_.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) { *error = "'" + path + "' is a directory: give a file name"; return false; }
+    if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) {
+      direct_ = true;
+      fd_ = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC);
+      if (fd_ < 0) { *error = "cannot write '" + path + "': " + std::strerror(errno); return false; }
+      return true;
+    }
+    if (!S_ISREG(st.st_mode)) { *error = "'" + path + "' is not a regular file, a character device or a FIFO"; return false; }
+    mode_ = st.st_mode & 07777;
+  } else {
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    mode_ = 0666 & ~mask;
+  }
+  // ".<name>.XXXXXX" in the target's directory, shortened so it fits NAME_MAX.
+  std::string base = BaseOf(target_).substr(0, 200);
+  std::string tmpl = DirectoryOf(target_) + "/." + base + ".XXXXXX";
+  std::vector<char> name(tmpl.begin(), tmpl.end());
+  name.push_back('\0');
+  fd_ = ::mkstemp(name.data());
+  if (fd_ < 0) { *error = "cannot create a file next to '" + path + "': " + std::strerror(errno); return false; }
+  tmp_path_ = name.data();
+  ::fchmod(fd_, mode_);
+  return true;
+}
+
+bool OutputFile::Flush() {
+  if (!failed_ && !buffer_.empty() && !WriteAll(fd_, buffer_.data(), buffer_.size(), &write_errno_)) failed_ = true;
+  buffer_.clear();
+  return !failed_;
+}
+
+bool OutputFile::Write(const char* data, size_t size) {
+  if (failed_ || fd_ < 0) return false;
+  if (buffer_.size() + size > kBufferSize && !Flush()) return false;
+  if (size >= kBufferSize) {
+    if (!WriteAll(fd_, data, size, &write_errno_)) failed_ = true;
+    return !failed_;
+  }
+  buffer_.insert(buffer_.end(), data, data + size);
+  return true;
+}
+
+// Writes `first_line` and then the temporary file's content to `fd`.
+bool OutputFile::CopyTo(int fd, const std::string& first_line, std::string* error) {
+  int err = 0;
+  if (!first_line.empty() && !WriteAll(fd, first_line.data(), first_line.size(), &err)) {
+    *error = std::strerror(err);
+    return false;
+  }
+  if (::lseek(fd_, 0, SEEK_SET) < 0) { *error = std::strerror(errno); return false; }
+  std::vector<char> chunk(kBufferSize);
+  for (;;) {
+    const ssize_t n = ::read(fd_, chunk.data(), chunk.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) { *error = std::strerror(errno); return false; }
+    if (n == 0) return true;
+    if (!WriteAll(fd, chunk.data(), static_cast<size_t>(n), &err)) { *error = std::strerror(err); return false; }
+  }
+}
+
+bool OutputFile::CopyToStream(const std::string& first_line, std::string* error) {
+  std::ostream& out = *stream_;
+  out << first_line;
+  if (::lseek(fd_, 0, SEEK_SET) < 0) { *error = std::strerror(errno); return false; }
+  std::vector<char> chunk(kBufferSize);
+  for (;;) {
+    const ssize_t n = ::read(fd_, chunk.data(), chunk.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) { *error = std::strerror(errno); return false; }
+    if (n == 0) break;
+    out.write(chunk.data(), n);
+  }
+  out.flush();
+  if (!out) { *error = std::strerror(errno ? errno : EIO); return false; }
+  return true;
+}
+
+bool OutputFile::Commit(const std::string& first_line, std::string* error) {
+  const std::string where = to_stdout_ ? "the standard output" : "'" + target_ + "'";
+  if (!Flush()) { *error = "write to " + where + " failed: " + std::strerror(write_errno_); Abort(); return false; }
+  if (direct_) {
+    committed_ = true;
+    const bool ok = ::close(fd_) == 0;
+    fd_ = -1;
+    if (!ok) *error = "closing " + where + " failed: " + std::strerror(errno);
+    return ok;
+  }
+  if (to_stdout_) {
+    const bool ok = stream_ ? CopyToStream(first_line, error) : CopyTo(1, first_line, error);
+    if (!ok) *error = "write to the standard output failed: " + *error;
+    Abort();
+    committed_ = true;
+    return ok;
+  }
+  if (!first_line.empty()) {
+    // Rare (a partial table): rewrite with the note in front.
+    OutputFile with_note;
+    if (!with_note.Open(target_, {}, error) || !CopyTo(with_note.fd_, first_line, error)) {
+      *error = "write to " + where + " failed: " + *error;
+      Abort();
+      return false;
+    }
+    Abort();
+    return with_note.Commit("", error);
+  }
+  if (::close(fd_) != 0) {
+    fd_ = -1;
+    *error = "write to " + where + " failed: " + std::strerror(errno);
+    Abort();
+    return false;
+  }
+  fd_ = -1;
+  if (::rename(tmp_path_.c_str(), target_.c_str()) != 0) {
+    *error = "cannot rename the finished table onto " + where + ": " + std::strerror(errno);
+    Abort();
+    return false;
+  }
+  tmp_path_.clear();
+  committed_ = true;
+  return true;
+}
+
+void OutputFile::Abort() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!tmp_path_.empty()) ::unlink(tmp_path_.c_str());
+  tmp_path_.clear();
+}
+
+}  // namespace mechkin
+
+namespace mechkin {
+
+bool WriteFileAtomically(const std::string& path, const std::string& content, std::string* error) {
+  OutputFile file;
+  if (!file.Open(path, {}, error)) return false;
+  file.Write(content);
+  return file.Commit("", error);
+}
+
+}  // namespace mechkin

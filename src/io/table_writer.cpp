@@ -1,0 +1,98 @@
+#include "io/table_writer.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace mechkin {
+
+std::string CsvCell(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string JsonEscape(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text) {
+    if (c == '"' || c == '\\') { out += '\\'; out += static_cast<char>(c); }
+    else if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c < 0x20) { char b[8]; std::snprintf(b, sizeof b, "\\u%04x", c); out += b; }
+    else out += static_cast<char>(c);
+  }
+  return out;
+}
+
+std::string XmlEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+TableWriter::TableWriter(const MotionLayout& layout, TableFormat format, OutputFile* file)
+    : format_(format), file_(file) {
+  std::string head;
+  if (format == TableFormat::Csv) {
+    for (size_t c = 0; c < layout.columns().size(); ++c) head += (c ? "," : "") + CsvCell(layout.columns()[c].Header());
+    head += "\n";
+  } else {
+    head = "{\"columns\":[";
+    for (size_t c = 0; c < layout.columns().size(); ++c) {
+      const ColumnDescriptor& d = layout.columns()[c];
+      head += std::string(c ? "," : "") + "{\"name\":\"" + JsonEscape(d.name) + "\",\"unit\":\"" + JsonEscape(d.unit) + "\"}";
+    }
+    head += "],\"rows\":[";
+  }
+  file_->Write(head);
+  line_.reserve(4096);
+}
+
+void TableWriter::AppendNumber(double v) {
+  char buf[32];
+  if (format_ == TableFormat::Json && !std::isfinite(v)) { line_ += "null"; return; }
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  line_.append(buf, res.ptr);
+}
+
+bool TableWriter::Append(const double* row, int size) {
+  line_.clear();
+  if (format_ == TableFormat::Json) line_ += first_row_ ? "[" : ",[";
+  for (int c = 0; c < size; ++c) {
+    if (c) line_ += ',';
+    AppendNumber(row[c]);
+  }
+  line_ += format_ == TableFormat::Json ? "]" : "\n";
+  first_row_ = false;
+  return file_->Write(line_);
+}
+
+bool TableWriter::Finish(const std::string& partial_note, std::string* error) {
+  const bool partial = !partial_note.empty();
+  if (format_ == TableFormat::Csv) return file_->Commit(partial ? "# PARTIAL TABLE: " + partial_note + "\n" : "", error);
+  std::string tail = "],\"mechkin_table\":1";
+  if (partial) tail += ",\"note\":\"" + JsonEscape(partial_note) + "\"";
+  tail += std::string(",\"partial\":") + (partial ? "true" : "false") + "}\n";
+  file_->Write(tail);
+  return file_->Commit("", error);
+}
+
+bool WriteMotion(const Motion& motion, TableFormat format, const std::string& path, std::string* error) {
+  OutputFile file;
+  if (!file.Open(path, {}, error)) return false;
+  TableWriter writer(motion.layout(), format, &file);
+  for (int r = 0; r < motion.rows(); ++r) writer.Append(&motion.values()[static_cast<size_t>(r) * motion.cols()], motion.cols());
+  return writer.Finish(motion.complete ? "" : motion.stop.Summary(), error);
+}
+
+}  // namespace mechkin
