@@ -11,6 +11,7 @@
 #include "analysis/kinematic_analysis.hpp"
 #include "model/loader.hpp"
 #include "analysis/motion.hpp"
+#include "io/async_sink.hpp"
 #include "io/table_writer.hpp"
 
 namespace mechkin {
@@ -149,6 +150,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
     return 1;
   }
   TableWriter writer(*layout, o.format == "json" ? TableFormat::Json : TableFormat::Csv, &file);
+  AsyncRowSink rows_out(&writer, layout->size());
   RowEvaluator eval(model, *layout);
   std::vector<double> row(layout->size());
   ProgressBar progress(err, model.analysis ? model.analysis->steps + 1 : 0);
@@ -160,8 +162,9 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
     progress.Row();
     watch.Row(d);
     if (o.stats) steps.push_back(d);
-    return writer.Append(row.data(), layout->size());
+    return rows_out.Append(row.data(), layout->size());
   });
+  const bool rows_written = rows_out.Drain();
   progress.Clear();
   for (const auto& sa : rep.set_aside) err << "mechkin run: redundant equation set aside: " << sa << "\n";
   watch.Report(err);
@@ -170,7 +173,8 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   if (rep.rows == 0) return 1;  // refused or failed before the first row: no table at all
   std::string note = rep.complete ? "" : rep.message.substr(0, rep.message.find('\n'));
   if (!rep.complete && note.empty()) note = "the run stopped early";
-  if (!writer.Finish(note, &why)) {
+  if (!writer.Finish(note, &why) || !rows_written) {
+    if (why.empty()) why = "writing the table failed";
     err << "mechkin run: " << why << "\n";
     return 1;
   }
