@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds and runs the whole test suite twice: Release (build/) and
+# Builds and runs the whole test suite: C++ (GoogleTest), the Python package
+# (pytest, through ctest), a short libFuzzer run, then the C++ suite again under
 # AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/).
 # Installs the Debian dependencies first (tools/setup.sh).
 set -euo pipefail
@@ -10,7 +11,8 @@ ctest --test-dir build --output-on-failure -j"$(nproc)"
 echo "== short fuzz run (libFuzzer, 20 s per target) =="
 bash tools/fuzz.sh 20
 echo "== sanitizer build (ASan + UBSan) =="
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMECHKIN_SANITIZE=ON -DMECHKIN_BUILD_BENCHMARKS=OFF >/dev/null
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMECHKIN_SANITIZE=ON \
+  -DMECHKIN_BUILD_BENCHMARKS=OFF -DMECHKIN_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-asan -j"$(nproc)"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)"
