@@ -1,0 +1,124 @@
+// mechkin against Simbody 3.7 (Debian's libsimbody-dev), side by side in one
+// binary, on the bundled spatial slider-crank (R-S-U-P, crank 360°/s):
+//   mechkin: position, velocity, acceleration and jerk per step (default tolerance);
+//   Simbody: prescribeQ + projectQ (same tolerance), prescribeU + projectU,
+//            realize(Acceleration) — position, velocity and acceleration only.
+// Before timing, both are checked to describe the same mechanism: the slider
+// positions at t = 0.3 s must agree to 1e-8 m.
+// Run with --benchmark_enable_random_interleaving=true --benchmark_repetitions=5.
+#include <benchmark/benchmark.h>
+
+#include <Simbody.h>
+#include <cmath>
+#include <cstdio>
+
+#include "analysis/kinematic_analysis.hpp"
+#include "model/loader.hpp"
+
+namespace {
+
+constexpr int kSteps = 360;
+constexpr double kTol = 1e-10;
+const SimTK::Vec3 kPin(0.1, 0, 0), kWrist(0.395127091267, 0.02, 0.05);
+
+// q = 2πt for the crank's pin.
+class CrankDriver : public SimTK::Motion::Custom::Implementation {
+ public:
+  SimTK::Motion::Level getLevel(const SimTK::State&) const override { return SimTK::Motion::Position; }
+  void calcPrescribedPosition(const SimTK::State& s, int, SimTK::Real* q) const override { q[0] = 2 * SimTK::Pi * s.getTime(); }
+  void calcPrescribedPositionDot(const SimTK::State&, int, SimTK::Real* qd) const override { qd[0] = 2 * SimTK::Pi; }
+  void calcPrescribedPositionDotDot(const SimTK::State&, int, SimTK::Real* qdd) const override { qdd[0] = 0; }
+};
+
+struct SimbodySliderCrank {
+  SimTK::MultibodySystem system;
+  SimTK::SimbodyMatterSubsystem matter{system};
+  SimTK::MobilizedBody::Slider slider;
+  SimTK::State state;
+
+  SimbodySliderCrank() {
+    using namespace SimTK;
+    const Body::Rigid body(MassProperties(1, Vec3(0), UnitInertia(1)));
+    MobilizedBody::Pin crank(matter.Ground(), Transform(), body, Transform());
+    MobilizedBody::Ball rod(crank, Transform(kPin), body, Transform());
+    slider = MobilizedBody::Slider(matter.Ground(), Transform(kWrist), body, Transform());
+    Constraint::Ball(rod, kWrist - kPin, slider, Vec3(0));
+    Constraint::ConstantAngle(rod, UnitVec3(-0.067612340378281, 0.997711667481428, 0), slider, UnitVec3(0, 0, 1));
+    Motion::Custom(crank, new CrankDriver);
+    state = system.realizeTopology();
+  }
+  void Step(double t) {
+    using namespace SimTK;
+    state.setTime(t);
+    system.realize(state, Stage::Time);
+    system.prescribeQ(state);
+    system.projectQ(state, kTol);
+    system.realize(state, Stage::Position);
+    system.prescribeU(state);
+    system.projectU(state, kTol);
+    system.realize(state, Stage::Acceleration);
+  }
+  double SliderX() const { return slider.getBodyOriginLocation(state)[0]; }
+};
+
+mechkin::Model LoadSliderCrank() {
+  mechkin::LoadResult r = mechkin::LoadMechanismFile(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/spatial-slider-crank.json");
+  return std::move(*r.model);
+}
+
+// The same mechanism: the slider's x at t = 0.3 s from both.
+bool SameMechanism() {
+  mechkin::Model m = LoadSliderCrank();
+  m.analysis = mechkin::Analysis{0, 0.3, 108};
+  double x_mechkin = 0;
+  mechkin::RunKinematicAnalysis(m, mechkin::AnalysisOptions{}, [&](const mechkin::SystemState& s, const mechkin::StepDiagnostics&) {
+    x_mechkin = s.bodies[2].r[0][0];
+    return true;
+  });
+  SimbodySliderCrank sb;
+  for (int k = 0; k <= 108; ++k) sb.Step(0.3 * k / 108);
+  std::printf("slider x at t = 0.3 s: mechkin %.12f, Simbody %.12f\n", x_mechkin, sb.SliderX());
+  return std::abs(x_mechkin - sb.SliderX()) < 1e-8;
+}
+
+void Mechkin(benchmark::State& st) {
+  mechkin::Model m = LoadSliderCrank();
+  m.analysis = mechkin::Analysis{0, 1, kSteps};
+  mechkin::AnalysisOptions o;
+  o.order = 3;
+  o.keep_step_diagnostics = false;
+  int rows = 0;
+  for (auto _ : st) {
+    const auto rep = mechkin::RunKinematicAnalysis(m, o, [&](const mechkin::SystemState&, const mechkin::StepDiagnostics&) {
+      ++rows;
+      return true;
+    });
+    if (!rep.complete) st.SkipWithError(rep.message.c_str());
+  }
+  st.counters["us_per_step"] = benchmark::Counter(rows / 1e6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void Simbody(benchmark::State& st) {
+  SimbodySliderCrank sb;
+  int rows = 0;
+  for (auto _ : st) {
+    for (int k = 0; k <= kSteps; ++k) sb.Step(static_cast<double>(k) / kSteps);
+    rows += kSteps + 1;
+  }
+  st.counters["us_per_step"] = benchmark::Counter(rows / 1e6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+BENCHMARK(Mechkin)->Unit(benchmark::kMillisecond);
+BENCHMARK(Simbody)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (!SameMechanism()) {
+    std::fprintf(stderr, "the two models disagree: not comparing\n");
+    return 1;
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  return 0;
+}
