@@ -34,8 +34,11 @@ RankInfo CalcRank(const Eigen::MatrixXd& J) {
   const Eigen::VectorXd& sv = svd.singularValues();
   const double smax = sv.size() ? sv[0] : 0;
   for (int k = 0; k < sv.size(); ++k) {
-    if (sv[k] > kRankThreshold * smax) { ++info.rank; info.sigma_min_kept = sv[k]; }
-    else info.sigma_max_dropped = std::max(info.sigma_max_dropped, sv[k]);
+    if (sv[k] > kRankThreshold * smax) {
+      ++info.rank;
+      info.sigma_min_kept = sv[k];
+    } else
+      info.sigma_max_dropped = std::max(info.sigma_max_dropped, sv[k]);
   }
   info.null_basis = svd.matrixV().rightCols(n - info.rank);
   return info;
@@ -62,12 +65,18 @@ std::pair<int, int> QuickMobility(const Model& model) {
 // Joint types that keep a joint's frame and remove fewer equations.
 std::vector<JointType> LooserTypes(JointType t) {
   switch (t) {
-    case JointType::Revolute: return {JointType::Cylindrical, JointType::Universal, JointType::Spherical};
-    case JointType::Prismatic: return {JointType::Cylindrical};
-    case JointType::Screw: return {JointType::Cylindrical};
-    case JointType::Universal: return {JointType::Spherical};
-    case JointType::Cylindrical: return {JointType::Planar};
-    default: return {};
+    case JointType::Revolute:
+      return {JointType::Cylindrical, JointType::Universal, JointType::Spherical};
+    case JointType::Prismatic:
+      return {JointType::Cylindrical};
+    case JointType::Screw:
+      return {JointType::Cylindrical};
+    case JointType::Universal:
+      return {JointType::Spherical};
+    case JointType::Cylindrical:
+      return {JointType::Planar};
+    default:
+      return {};
   }
 }
 
@@ -88,8 +97,8 @@ std::string SuggestRemoval(const Model& model, const MobilityReport& rep) {
         candidates.insert(static_cast<int>(j));
     }
   auto describe = [&](int j, JointType t) {
-    return "joint `" + model.joints[j].name + "` (" + JointTypeName(model.joints[j].type) + ") by a " + JointTypeName(t) +
-           " joint";
+    return "joint `" + model.joints[j].name + "` (" + JointTypeName(model.joints[j].type) + ") by a " +
+           JointTypeName(t) + " joint";
   };
   const int r = rep.redundant;
   for (int j : candidates)
@@ -98,7 +107,8 @@ std::string SuggestRemoval(const Model& model, const MobilityReport& rep) {
       Model m = model;
       Loosen(&m.joints[j], t);
       if (QuickMobility(m) == std::pair<int, int>{rep.mobility, 0})
-        return "replace " + describe(j, t) + ": redundant 0, mobility still " + std::to_string(rep.mobility) + " (verified)";
+        return "replace " + describe(j, t) + ": redundant 0, mobility still " + std::to_string(rep.mobility) +
+               " (verified)";
     }
   for (int j1 : candidates)
     for (int j2 : candidates) {
@@ -117,6 +127,195 @@ std::string SuggestRemoval(const Model& model, const MobilityReport& rep) {
         }
     }
   return "";
+}
+
+// A different pose along the free motion when the design pose is an unlucky
+// (singular) one: the largest rank seen is the generic one.
+void SeekGenericRank(const Model& model, const ConstraintSystem& joints, const SolveOptions& opt,
+                     SystemState* state_ptr, RankInfo* info_ptr) {
+  SystemState& state = *state_ptr;
+  RankInfo& info = *info_ptr;
+  const int n = model.num_bodies();
+  // Guard against an unlucky (singular) design pose: move along the free motion
+  // and take the largest rank seen.
+  if (info.null_basis.cols() == 0) return;
+  {
+    std::mt19937 rng(12345);
+    std::normal_distribution<double> nd;
+    const double L = model.characteristic_length;
+    const int trials = 6 * n <= 300 ? 2 : 1;  // each trial is a dense re-assembly
+    for (int trial = 0; trial < trials; ++trial) {
+      SystemState moved = state;
+      Eigen::VectorXd c(info.null_basis.cols());
+      for (int k = 0; k < c.size(); ++k) c[k] = nd(rng);
+      Eigen::VectorXd dq = info.null_basis * c.normalized() * 0.05;
+      for (int b = 0; b < n; ++b) dq.segment<3>(6 * b) *= L;
+      ApplyStep(dq, &moved);
+      if (!AssembleMinNorm(joints, AllRows(joints), opt, &moved).success) continue;
+      RankInfo other = CalcRank(ScaledJacobian(joints, moved));
+      if (other.rank > info.rank) {
+        info = other;
+        state = moved;
+      }
+    }
+  }
+}
+
+// The redundant equations, greedy in file order (later equations are the
+// redundant ones), each with the joints whose equations already fix it.
+// Skipped when the SVD already shows full row rank: the greedy pass is O(m²n).
+void NameRedundantEquations(const ConstraintSystem& joints, const Eigen::MatrixXd& J, MobilityReport* rep_ptr) {
+  MobilityReport& rep = *rep_ptr;
+  std::vector<int> dependent;
+  const std::vector<int> kept = rep.redundant > 0 ? IndependentRows(J, 1e-7, &dependent) : AllRows(joints);
+  for (int row : dependent) {
+    RedundantEquation eq;
+    eq.row = row;
+    eq.description = joints.DescribeRow(row);
+    Eigen::MatrixXd K(kept.size(), J.cols());
+    for (size_t k = 0; k < kept.size(); ++k) K.row(k) = J.row(kept[k]);
+    const Eigen::VectorXd coef = K.transpose().completeOrthogonalDecomposition().solve(J.row(row).transpose());
+    const double cmax = coef.cwiseAbs().maxCoeff();
+    std::set<std::string> names;
+    for (size_t k = 0; k < kept.size(); ++k)
+      if (std::abs(coef[k]) > 1e-6 * cmax) names.insert(joints.SourceName(kept[k]));
+    names.erase(joints.SourceName(row));
+    eq.fixed_by.assign(names.begin(), names.end());
+    rep.redundant_equations.push_back(eq);
+  }
+}
+
+// Rank of joints + drivers together at the same pose: freedoms left, conflicting drivers.
+Eigen::MatrixXd DrivingRank(const Model& model, const ConstraintSystem& full, const SystemState& state, int joint_rank,
+                            MobilityReport* rep_ptr) {
+  MobilityReport& rep = *rep_ptr;
+  const int n = model.num_bodies();
+  SystemState fstate(full);
+  fstate.bodies = state.bodies;
+  fstate.angle_ref.assign(full.entries().size(), 0.0);
+  const Eigen::MatrixXd Jf = ScaledJacobian(full, fstate);
+  const RankInfo finfo = CalcRank(Jf);
+  rep.dof_after_drivers = 6 * n - finfo.rank;
+  std::vector<int> fdep;
+  if (finfo.rank < full.num_rows()) IndependentRows(Jf, 1e-7, &fdep);
+  std::set<std::string> conflicting;
+  for (int row : fdep)
+    if (row >= full.num_joint_rows()) conflicting.insert(full.SourceName(row));
+  rep.conflicting_drivers.assign(conflicting.begin(), conflicting.end());
+  rep.driver_rank_deficit = static_cast<int>(model.drivers.size()) - (finfo.rank - joint_rank);
+
+  return Jf;
+}
+
+// The rows a rigid motion of `group` must not violate: the joints and drivers,
+// and the output points on the group's bodies. T maps the group twist to q̇.
+Eigen::MatrixXd GroupConstraints(const Model& model, const std::vector<int>& g, const SystemState& state,
+                                 const Eigen::MatrixXd& Jf, Eigen::MatrixXd* T_out) {
+  const int n = model.num_bodies();
+  const double L = model.characteristic_length;
+  Eigen::MatrixXd& T = *T_out;
+  // T maps a group twist (ω global, v at the global origin; scaled by L) to q̇ (scaled).
+  T = Eigen::MatrixXd::Zero(6 * n, 6);
+  for (int b : g) {
+    const Vec3 r = state.bodies[b].r[0];
+    const Mat3& A = state.bodies[b].A;
+    T.block(6 * b, 0, 3, 3) = -Tilde(r) / L;  // ṙ = v + ω × r
+    T.block(6 * b, 3, 3, 3) = Mat3::Identity();
+    T.block(6 * b + 3, 0, 3, 3) = A.transpose();
+  }
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(Jf.rows(), 6);
+  for (int b : g) S += Jf.middleCols(6 * b, 6) * T.middleRows(6 * b, 6);
+  // Output points on the group's bodies must not move.
+  for (const auto& o : model.outputs)
+    for (BodyIndex ob : {o.body1, o.body2})
+      if (ob != kGround && std::find(g.begin(), g.end(), ob) != g.end() && o.kind != OutputKind::JointCoordinate) {
+        const Vec3 s = ob == o.body1 ? o.point1 : o.point2;
+        const Vec3 P = state.bodies[ob].r[0] + state.bodies[ob].A * s;
+        Eigen::MatrixXd Vp(3, 6);
+        Vp.leftCols(3) = -Tilde(P) / L;
+        Vp.rightCols(3) = Mat3::Identity();
+        Eigen::MatrixXd S2(S.rows() + 3, 6);
+        S2 << S, Vp;
+        S = S2;
+      }
+  return S;
+}
+
+// Idle freedoms: a body, or two bodies joined by a joint, moving together as one
+// rigid group while everything else is still, no driver coordinate and no output
+// point moves.
+void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen::MatrixXd& Jf,
+                      MobilityReport* rep_ptr) {
+  MobilityReport& rep = *rep_ptr;
+  const int n = model.num_bodies();
+  std::vector<std::vector<int>> groups;
+  for (int b = 0; b < n; ++b) groups.push_back({b});
+  for (const auto& jt : model.joints)
+    if (jt.body1 != kGround && jt.body2 != kGround)
+      groups.push_back({std::min(jt.body1, jt.body2), std::max(jt.body1, jt.body2)});
+  std::sort(groups.begin(), groups.end());
+  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  std::vector<Eigen::VectorXd> idle_motions;
+  for (const auto& g : groups) {
+    Eigen::MatrixXd T;
+    const Eigen::MatrixXd S = GroupConstraints(model, g, state, Jf, &T);
+    const RankInfo gi = CalcRank(S);
+    for (int c = 0; c < gi.null_basis.cols(); ++c) {
+      const Eigen::VectorXd motion = T * gi.null_basis.col(c);
+      // New direction only if independent of the idle motions found so far
+      // (idle_motions is kept orthonormal).
+      Eigen::VectorXd v = motion;
+      for (int pass = 0; pass < 2; ++pass)
+        for (const auto& q : idle_motions) v -= q.dot(v) * q;
+      if (v.norm() <= 1e-6 * motion.norm()) continue;
+      idle_motions.push_back(v.normalized());
+      IdleFreedom f;
+      const Vec3 w = gi.null_basis.col(c).head<3>();
+      f.axis = w.norm() > 0 ? Vec3(w.normalized()) : Vec3::Zero();
+      std::string names;
+      for (int b : g) f.body += (f.body.empty() ? "" : "+") + model.bodies[b].name;
+      f.description =
+          (g.size() == 1 ? "body `" + f.body + "`" : "bodies `" + f.body + "` together") +
+          (w.norm() > 0
+               ? (g.size() == 1 ? " spins about its own axis " : " spin about their common axis ") + VecStr(f.axis)
+               : " slide") +
+          " without moving anything else; model " +
+          (g.size() == 1 ? "the link as a `distance` joint instead of a body"
+                         : "the leg with fewer bodies or lock the spin") +
+          " if nothing but its length matters";
+      rep.idle.push_back(f);
+    }
+  }
+}
+
+// full / under (naming the freedoms left by the bodies they move most) / over.
+void ClassifyDriving(const Model& model, const Eigen::MatrixXd& Jf, MobilityReport* rep_ptr) {
+  MobilityReport& rep = *rep_ptr;
+  const int n = model.num_bodies();
+  const int idle = static_cast<int>(rep.idle.size());
+  if (!rep.conflicting_drivers.empty())
+    rep.driving_status = DrivingStatus::Over;
+  else if (rep.dof_after_drivers - idle > 0)
+    rep.driving_status = DrivingStatus::Under;
+  else
+    rep.driving_status = DrivingStatus::Full;
+  if (rep.driving_status == DrivingStatus::Under) {
+    // Name the remaining freedoms by the bodies they move most.
+    const RankInfo rest = CalcRank(Jf);
+    for (int c = 0;
+         c < rest.null_basis.cols() && static_cast<int>(rep.remaining_freedoms.size()) < rep.dof_after_drivers - idle;
+         ++c) {
+      const Eigen::VectorXd v = rest.null_basis.col(c);
+      std::vector<std::pair<double, int>> mv;
+      for (int b = 0; b < n; ++b) mv.emplace_back(v.segment<6>(6 * b).norm(), b);
+      std::sort(mv.rbegin(), mv.rend());
+      std::string s = "a freedom moving ";
+      int listed = 0;
+      for (const auto& [mag, b] : mv)
+        if (mag > 1e-6 && listed < 4) s += (listed++ ? ", `" : "`") + model.bodies[b].name + "`";
+      rep.remaining_freedoms.push_back(s + " is not driven");
+    }
+  }
 }
 
 }  // namespace
@@ -144,168 +343,35 @@ MobilityReport CalcMobility(const Model& model) {
   }
   rep.assembled = true;
   rep.assembly_message = "assembled";
-
-  const Eigen::MatrixXd Jj = ScaledJacobian(joints, state);
-  RankInfo info = CalcRank(Jj);
-  // Guard against an unlucky (singular) design pose: move along the free motion
-  // and take the largest rank seen.
-  if (info.null_basis.cols() > 0) {
-    std::mt19937 rng(12345);
-    std::normal_distribution<double> nd;
-    const double L = model.characteristic_length;
-    const int trials = 6 * n <= 300 ? 2 : 1;  // each trial is a dense re-assembly
-    for (int trial = 0; trial < trials; ++trial) {
-      SystemState moved = state;
-      Eigen::VectorXd c(info.null_basis.cols());
-      for (int k = 0; k < c.size(); ++k) c[k] = nd(rng);
-      Eigen::VectorXd dq = info.null_basis * c.normalized() * 0.05;
-      for (int b = 0; b < n; ++b) dq.segment<3>(6 * b) *= L;
-      ApplyStep(dq, &moved);
-      if (!AssembleMinNorm(joints, AllRows(joints), opt, &moved).success) continue;
-      RankInfo other = CalcRank(ScaledJacobian(joints, moved));
-      if (other.rank > info.rank) {
-        info = other;
-        state = moved;
-      }
-    }
-  }
-  const Eigen::MatrixXd J = ScaledJacobian(joints, state);
+  RankInfo info = CalcRank(ScaledJacobian(joints, state));
+  SeekGenericRank(model, joints, opt, &state, &info);
   rep.rank = info.rank;
   rep.sigma_min_kept = info.sigma_min_kept;
   rep.sigma_max_dropped = info.sigma_max_dropped;
   rep.mobility = 6 * n - info.rank;
   rep.redundant = joints.num_rows() - info.rank;
-
-  // Name the redundant equations: greedy in file order, later equations are the redundant ones.
-  // (Skipped when the SVD already shows full row rank: the greedy pass is O(m²n).)
-  std::vector<int> dependent;
-  const std::vector<int> kept = rep.redundant > 0 ? IndependentRows(J, 1e-7, &dependent) : AllRows(joints);
-  for (int row : dependent) {
-    RedundantEquation eq;
-    eq.row = row;
-    eq.description = joints.DescribeRow(row);
-    Eigen::MatrixXd K(kept.size(), J.cols());
-    for (size_t k = 0; k < kept.size(); ++k) K.row(k) = J.row(kept[k]);
-    const Eigen::VectorXd coef = K.transpose().completeOrthogonalDecomposition().solve(J.row(row).transpose());
-    const double cmax = coef.cwiseAbs().maxCoeff();
-    std::set<std::string> names;
-    for (size_t k = 0; k < kept.size(); ++k)
-      if (std::abs(coef[k]) > 1e-6 * cmax) names.insert(joints.SourceName(kept[k]));
-    names.erase(joints.SourceName(row));
-    eq.fixed_by.assign(names.begin(), names.end());
-    rep.redundant_equations.push_back(eq);
-  }
-
-  // Driving status: rank of joints + drivers at the same pose.
-  SystemState fstate(full);
-  fstate.bodies = state.bodies;
-  fstate.angle_ref.assign(full.entries().size(), 0.0);
-  const Eigen::MatrixXd Jf = ScaledJacobian(full, fstate);
-  const RankInfo finfo = CalcRank(Jf);
-  rep.dof_after_drivers = 6 * n - finfo.rank;
-  std::vector<int> fdep;
-  if (finfo.rank < full.num_rows()) IndependentRows(Jf, 1e-7, &fdep);
-  std::set<std::string> conflicting;
-  for (int row : fdep)
-    if (row >= full.num_joint_rows()) conflicting.insert(full.SourceName(row));
-  rep.conflicting_drivers.assign(conflicting.begin(), conflicting.end());
-  rep.driver_rank_deficit = static_cast<int>(model.drivers.size()) - (finfo.rank - info.rank);
-
-  // Idle freedoms: a body, or two bodies joined by a joint, moving together as one
-  // rigid group while everything else is still, no driver coordinate and no output
-  // point moves.
-  const double L = model.characteristic_length;
-  std::vector<std::vector<int>> groups;
-  for (int b = 0; b < n; ++b) groups.push_back({b});
-  for (const auto& jt : model.joints)
-    if (jt.body1 != kGround && jt.body2 != kGround) groups.push_back({std::min(jt.body1, jt.body2), std::max(jt.body1, jt.body2)});
-  std::sort(groups.begin(), groups.end());
-  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
-  std::vector<Eigen::VectorXd> idle_motions;
-  for (const auto& g : groups) {
-    // T maps a group twist (ω global, v at the global origin; scaled by L) to q̇ (scaled).
-    Eigen::MatrixXd T = Eigen::MatrixXd::Zero(6 * n, 6);
-    for (int b : g) {
-      const Vec3 r = state.bodies[b].r[0];
-      const Mat3& A = state.bodies[b].A;
-      T.block(6 * b, 0, 3, 3) = -Tilde(r) / L;  // ṙ = v + ω × r
-      T.block(6 * b, 3, 3, 3) = Mat3::Identity();
-      T.block(6 * b + 3, 0, 3, 3) = A.transpose();
-    }
-    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(Jf.rows(), 6);
-    for (int b : g) S += Jf.middleCols(6 * b, 6) * T.middleRows(6 * b, 6);
-    // Output points on the group's bodies must not move.
-    for (const auto& o : model.outputs)
-      for (BodyIndex ob : {o.body1, o.body2})
-        if (ob != kGround && std::find(g.begin(), g.end(), ob) != g.end() && o.kind != OutputKind::JointCoordinate) {
-          const Vec3 s = ob == o.body1 ? o.point1 : o.point2;
-          const Vec3 P = state.bodies[ob].r[0] + state.bodies[ob].A * s;
-          Eigen::MatrixXd Vp(3, 6);
-          Vp.leftCols(3) = -Tilde(P) / L;
-          Vp.rightCols(3) = Mat3::Identity();
-          Eigen::MatrixXd S2(S.rows() + 3, 6);
-          S2 << S, Vp;
-          S = S2;
-        }
-    const RankInfo gi = CalcRank(S);
-    for (int c = 0; c < gi.null_basis.cols(); ++c) {
-      const Eigen::VectorXd motion = T * gi.null_basis.col(c);
-      // New direction only if independent of the idle motions found so far
-      // (idle_motions is kept orthonormal).
-      Eigen::VectorXd v = motion;
-      for (int pass = 0; pass < 2; ++pass)
-        for (const auto& q : idle_motions) v -= q.dot(v) * q;
-      if (v.norm() <= 1e-6 * motion.norm()) continue;
-      idle_motions.push_back(v.normalized());
-      IdleFreedom f;
-      const Vec3 w = gi.null_basis.col(c).head<3>();
-      f.axis = w.norm() > 0 ? Vec3(w.normalized()) : Vec3::Zero();
-      std::string names;
-      for (int b : g) f.body += (f.body.empty() ? "" : "+") + model.bodies[b].name;
-      f.description = (g.size() == 1 ? "body `" + f.body + "`" : "bodies `" + f.body + "` together") +
-                      (w.norm() > 0 ? (g.size() == 1 ? " spins about its own axis " : " spin about their common axis ") + VecStr(f.axis) : " slide") +
-                      " without moving anything else; model " +
-                      (g.size() == 1 ? "the link as a `distance` joint instead of a body"
-                                     : "the leg with fewer bodies or lock the spin") +
-                      " if nothing but its length matters";
-      rep.idle.push_back(f);
-    }
-  }
-  const int idle = static_cast<int>(rep.idle.size());
-  if (!rep.conflicting_drivers.empty()) rep.driving_status = DrivingStatus::Over;
-  else if (rep.dof_after_drivers - idle > 0) rep.driving_status = DrivingStatus::Under;
-  else rep.driving_status = DrivingStatus::Full;
-  if (rep.driving_status == DrivingStatus::Under) {
-    // Name the remaining freedoms by the bodies they move most.
-    const RankInfo rest = CalcRank(Jf);
-    for (int c = 0; c < rest.null_basis.cols() && static_cast<int>(rep.remaining_freedoms.size()) < rep.dof_after_drivers - idle; ++c) {
-      const Eigen::VectorXd v = rest.null_basis.col(c);
-      std::vector<std::pair<double, int>> mv;
-      for (int b = 0; b < n; ++b) mv.emplace_back(v.segment<6>(6 * b).norm(), b);
-      std::sort(mv.rbegin(), mv.rend());
-      std::string s = "a freedom moving ";
-      int listed = 0;
-      for (const auto& [mag, b] : mv)
-        if (mag > 1e-6 && listed < 4) s += (listed++ ? ", `" : "`") + model.bodies[b].name + "`";
-      rep.remaining_freedoms.push_back(s + " is not driven");
-    }
-  }
+  NameRedundantEquations(joints, ScaledJacobian(joints, state), &rep);
+  const Eigen::MatrixXd Jf = DrivingRank(model, full, state, info.rank, &rep);
+  FindIdleFreedoms(model, state, Jf, &rep);
+  ClassifyDriving(model, Jf, &rep);
   if (rep.redundant > 0) {
     const std::string suggestion = SuggestRemoval(model, rep);
     if (!suggestion.empty()) rep.suggestions.push_back(suggestion);
-  }
-  if (rep.redundant > 0) rep.verdict_kind = MobilityVerdict::Overconstrained;
-  if (rep.redundant > 0)
+    rep.verdict_kind = MobilityVerdict::Overconstrained;
     rep.verdict = "overconstrained: " + std::to_string(rep.redundant) + " redundant equation" +
                   (rep.redundant == 1 ? "" : "s") + " — the Grübler count undercounts the mobility";
+  }
   return rep;
 }
 
 const char* DrivingStatusName(DrivingStatus status) {
   switch (status) {
-    case DrivingStatus::Full: return "full";
-    case DrivingStatus::Under: return "under";
-    case DrivingStatus::Over: return "over";
+    case DrivingStatus::Full:
+      return "full";
+    case DrivingStatus::Under:
+      return "under";
+    case DrivingStatus::Over:
+      return "over";
   }
   return "full";
 }

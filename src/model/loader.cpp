@@ -26,9 +26,12 @@ namespace {
 std::string EscapeToken(const std::string& key) {
   std::string out;
   for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
   }
   return out;
 }
@@ -56,22 +59,32 @@ std::string DidYouMean(const std::string& word, const std::vector<std::string>& 
   size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;
   for (const auto& c : choices) {
     const size_t d = EditDistance(word, c);
-    if (d < best_d) { best_d = d; best = c; }
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
   }
   return best;
 }
 
 std::string TypeName(const json& j) {
   switch (j.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return "a boolean";
-    case json::value_t::string: return "a string";
-    case json::value_t::array: return "an array";
-    case json::value_t::object: return "an object";
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return "a boolean";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::array:
+      return "an array";
+    case json::value_t::object:
+      return "an object";
     case json::value_t::number_float:
     case json::value_t::number_integer:
-    case json::value_t::number_unsigned: return "a number";
-    default: return "an unsupported value";
+    case json::value_t::number_unsigned:
+      return "a number";
+    default:
+      return "an unsupported value";
   }
 }
 
@@ -157,10 +170,10 @@ class Reader {
   std::optional<std::string> Name(const json& obj, const std::string& ptr, const std::string& what) {
     auto s = String(obj, "name", ptr);
     if (!s) return std::nullopt;
-    const bool ok = !s->empty() && s->size() <= 64 && (std::isalpha(static_cast<unsigned char>((*s)[0])) || (*s)[0] == '_') &&
-                    std::all_of(s->begin(), s->end(), [](char c) {
-                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
-                    });
+    const bool ok =
+        !s->empty() && s->size() <= 64 && (std::isalpha(static_cast<unsigned char>((*s)[0])) || (*s)[0] == '_') &&
+        std::all_of(s->begin(), s->end(),
+                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
     if (!ok) {
       Error(ptr + "/name", "invalid " + what + " name '" + Shorten(*s) + "'",
             "use 1-64 letters, digits, '_' or '-', starting with a letter or '_' (names become table columns)");
@@ -249,7 +262,8 @@ const std::vector<JointTypeInfo>& JointTypes() {
 std::optional<Vec4> ReadOrientation(Reader& rd, const json& o, const std::string& ptr, double angle_scale) {
   if (!o.is_object()) {
     rd.Error(ptr, "'orientation' must be an object, not " + TypeName(o),
-             "use {\"axis\": [x,y,z], \"angle\": a}, {\"euler_parameters\": [e0,e1,e2,e3]} or {\"matrix\": [[..],[..],[..]]}");
+             "use {\"axis\": [x,y,z], \"angle\": a}, {\"euler_parameters\": [e0,e1,e2,e3]} or {\"matrix\": "
+             "[[..],[..],[..]]}");
     return std::nullopt;
   }
   const std::vector<std::string> allowed = {"axis", "angle", "euler_parameters", "matrix"};
@@ -261,8 +275,14 @@ std::optional<Vec4> ReadOrientation(Reader& rd, const json& o, const std::string
     return std::nullopt;
   }
   if (o.contains("axis") || o.contains("angle")) {
-    if (!o.contains("axis")) { rd.Error(ptr + "/axis", "missing key 'axis' next to 'angle'", "add the rotation axis"); return std::nullopt; }
-    if (!o.contains("angle")) { rd.Error(ptr + "/angle", "missing key 'angle' next to 'axis'", "add the rotation angle"); return std::nullopt; }
+    if (!o.contains("axis")) {
+      rd.Error(ptr + "/axis", "missing key 'axis' next to 'angle'", "add the rotation axis");
+      return std::nullopt;
+    }
+    if (!o.contains("angle")) {
+      rd.Error(ptr + "/angle", "missing key 'angle' next to 'axis'", "add the rotation angle");
+      return std::nullopt;
+    }
     auto axis = rd.Vector(o, "axis", ptr, true);
     auto angle = rd.Number(o, "angle", ptr);
     if (!axis || !angle) return std::nullopt;
@@ -314,8 +334,9 @@ std::optional<Vec4> ReadOrientation(Reader& rd, const json& o, const std::string
   // and reject matrices that are not rotations at all.
   const double defect = (R.transpose() * R - Mat3::Identity()).norm();
   if (!(defect <= 1e-2) || !(R.determinant() > 0)) {
-    rd.Error(p, "matrix is not a rotation (orthonormality defect " + std::to_string(defect) +
-                    (R.determinant() > 0 ? "" : ", determinant <= 0") + ")",
+    rd.Error(p,
+             "matrix is not a rotation (orthonormality defect " + std::to_string(defect) +
+                 (R.determinant() > 0 ? "" : ", determinant <= 0") + ")",
              "give a proper orthonormal matrix (columns = body axes in global components)");
     return std::nullopt;
   }
@@ -331,14 +352,15 @@ std::optional<TimeFunction> ReadFunction(Reader& rd, const json& f, const std::s
       auto e = std::make_shared<Expression>(Expression::Parse(f.get<std::string>()));
       return TimeFunction(e, scale);
     } catch (const ExpressionError& err) {
-      rd.Error(ptr, std::string("bad expression at column ") + std::to_string(err.column) + ": " + err.what(),
-               "expressions use t, numbers, + - * / ^, parentheses, pi and sin cos tan asin acos atan atan2 exp log sqrt");
+      rd.Error(
+          ptr, std::string("bad expression at column ") + std::to_string(err.column) + ": " + err.what(),
+          "expressions use t, numbers, + - * / ^, parentheses, pi and sin cos tan asin acos atan atan2 exp log sqrt");
       return std::nullopt;
     }
   }
   if (f.is_number()) {
-    rd.Error(ptr, "'function' must be a string expression or a table", "write the constant as a string, e.g. \"" +
-                                                                          f.dump() + "\"");
+    rd.Error(ptr, "'function' must be a string expression or a table",
+             "write the constant as a string, e.g. \"" + f.dump() + "\"");
     return std::nullopt;
   }
   if (!f.is_object()) {
@@ -379,12 +401,590 @@ std::optional<TimeFunction> ReadFunction(Reader& rd, const json& f, const std::s
   }
 }
 
-}  // namespace
+std::vector<std::string> JointTypeNames() {
+  std::vector<std::string> names;
+  for (const auto& t : JointTypes()) names.push_back(t.name);
+  return names;
+}
 
-LoadResult LoadMechanismText(const std::string& text, const std::string& source_name) {
-  LoadResult result;
-  Reader rd(&result);
-  json doc;
+// Reads a parsed document section by section into the model (the spec layer):
+// each section reports every problem it finds with its JSON pointer and a fix,
+// and a failed element is known by name (index -2) so that references to it
+// do not produce a second, misleading error.
+class SpecReader {
+ public:
+  explicit SpecReader(LoadResult* result) : rd_(result) {}
+  Reader& reader() { return rd_; }
+  Model& model() { return model_; }
+
+  bool ReadHeader(const json& doc) {
+    if (!rd_.CheckObject(
+            doc, "",
+            {"mechkin", "name", "description", "units", "bodies", "joints", "drivers", "analysis", "outputs", "expect"},
+            {"mechkin", "bodies", "joints"}, "the mechanism file"))
+      return false;
+    if (auto v = rd_.Integer(doc, "mechkin", ""); v && *v != 1)
+      rd_.Error("/mechkin", "unsupported format version " + std::to_string(*v), "this mechkin reads version 1");
+    if (auto s = rd_.String(doc, "name", "")) model_.name = *s;
+    if (auto s = rd_.String(doc, "description", "")) model_.description = *s;
+    return true;
+  }
+
+  // Units first: every other number depends on them.
+  void ReadUnits(const json& doc) {
+    if (doc.contains("units")) {
+      const json& u = doc.at("units");
+      if (rd_.CheckObject(u, "/units", {"length", "angle"}, {}, "'units'")) {
+        if (auto s = rd_.String(u, "length", "/units")) {
+          if (auto f = LengthUnitToSi(*s)) {
+            model_.units.length_name = *s;
+            model_.units.length_to_si = *f;
+          } else {
+            const std::string g = DidYouMean(*s, LengthUnitNames());
+            rd_.Error("/units/length", "unknown length unit '" + Shorten(*s) + "'",
+                      (g.empty() ? "" : "did you mean '" + g + "'? ") + "use one of " + Join(LengthUnitNames()));
+          }
+        }
+        if (auto s = rd_.String(u, "angle", "/units")) {
+          if (auto f = AngleUnitToSi(*s)) {
+            model_.units.angle_name = *s;
+            model_.units.angle_to_si = *f;
+          } else {
+            const std::string g = DidYouMean(*s, AngleUnitNames());
+            rd_.Error("/units/angle", "unknown angle unit '" + Shorten(*s) + "'",
+                      (g.empty() ? "" : "did you mean '" + g + "'? ") + "use one of " + Join(AngleUnitNames()));
+          }
+        }
+      }
+    }
+    length_ = model_.units.length_to_si;
+    angle_ = model_.units.angle_to_si;
+  }
+
+  /// Every element of the array `key` through `read(element, pointer)`.
+  template <typename ReadElement>
+  void ReadArray(const json& doc, const std::string& key, const std::string& what, ReadElement read) {
+    if (!doc.contains(key)) return;
+    const json& items = doc.at(key);
+    if (!items.is_array()) {
+      rd_.Error("/" + key, "'" + key + "' must be an array of " + what + " objects, not " + TypeName(items));
+      return;
+    }
+    for (size_t k = 0; k < items.size(); ++k) read(items[k], "/" + key + "/" + std::to_string(k));
+  }
+
+  void ReadBody(const json& b, const std::string& ptr) {
+    if (!rd_.CheckObject(b, ptr, {"name", "description", "position", "orientation"}, {"name", "position"}, "a body"))
+      return;
+    Body body;
+    auto name = rd_.Name(b, ptr, "body");
+    auto pos = LengthVector(b, "position", ptr);
+    body.euler = Vec4(1, 0, 0, 0);
+    bool ok = name && pos;
+    if (b.contains("orientation")) {
+      auto q = ReadOrientation(rd_, b.at("orientation"), ptr + "/orientation", angle_);
+      if (q)
+        body.euler = *q;
+      else
+        ok = false;
+    }
+    if (name && *name == "ground") {
+      rd_.Error(ptr + "/name", "'ground' is reserved for the fixed frame and cannot be a moving body",
+                "rename the body, or attach parts to ground directly");
+      ok = false;
+    } else if (name && body_index_.count(*name)) {
+      rd_.Error(ptr + "/name", "duplicate body name '" + *name + "'", "give every body a unique name");
+      ok = false;
+    }
+    if (!ok) {
+      if (name && *name != "ground") body_index_.emplace(*name, -2);  // known name, invalid body
+      return;
+    }
+    body.name = *name;
+    body.position = *pos;
+    body_index_[body.name] = static_cast<BodyIndex>(model_.bodies.size());
+    model_.bodies.push_back(body);
+  }
+
+  void ReadJoint(const json& jj, const std::string& ptr) {
+    if (!jj.is_object()) {
+      rd_.Error(ptr, "a joint must be a JSON object, not " + TypeName(jj));
+      return;
+    }
+    auto type_s = rd_.String(jj, "type", ptr);
+    const JointTypeInfo* info = nullptr;
+    if (type_s) {
+      for (const auto& t : JointTypes())
+        if (*type_s == t.name) info = &t;
+      if (!info) {
+        const std::string g = DidYouMean(*type_s, JointTypeNames());
+        rd_.Error(ptr + "/type", "unknown joint type '" + Shorten(*type_s) + "'",
+                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(JointTypeNames()));
+      }
+    }
+    std::vector<std::string> allowed = {"name", "description", "type", "body1", "body2"};
+    std::vector<std::string> required = {"name", "type", "body1", "body2"};
+    if (info) {
+      allowed.insert(allowed.end(), info->geometry.begin(), info->geometry.end());
+      allowed.insert(allowed.end(), info->optional.begin(), info->optional.end());
+      required.insert(required.end(), info->geometry.begin(), info->geometry.end());
+    } else {
+      for (const auto& t : JointTypes()) {
+        allowed.insert(allowed.end(), t.geometry.begin(), t.geometry.end());
+        allowed.insert(allowed.end(), t.optional.begin(), t.optional.end());
+      }
+    }
+    rd_.CheckObject(jj, ptr, allowed, required, info ? std::string("a ") + info->name + " joint" : "a joint");
+    auto name = rd_.Name(jj, ptr, "joint");
+    auto b1 = BodyRef(jj, "body1", ptr);
+    auto b2 = BodyRef(jj, "body2", ptr);
+    bool ok = name && b1 && b2 && info;
+    if (name) {
+      if (joint_index_.count(*name)) {
+        rd_.Error(ptr + "/name", "duplicate joint name '" + *name + "'", "give every joint a unique name");
+        ok = false;
+      }
+      joint_index_.emplace(*name, -2);
+    }
+    if (b1 && b2 && *b1 == *b2) {
+      rd_.Error(ptr + "/body2", "joint connects body '" + model_.BodyName(*b1) + "' to itself",
+                "a joint needs two different bodies (either may be ground)");
+      ok = false;
+    }
+    if (!info) return;
+    ReadJointGeometry(jj, ptr, *info, ok ? &*name : nullptr, b1 ? *b1 : kGround, b2 ? *b2 : kGround);
+  }
+
+  void ReadDriver(const json& d, const std::string& ptr) {
+    if (!d.is_object()) {
+      rd_.Error(ptr, "a driver must be a JSON object, not " + TypeName(d));
+      return;
+    }
+    auto type_s = rd_.String(d, "type", ptr);
+    std::vector<std::string> allowed = {"name", "description", "type", "function"};
+    std::vector<std::string> required = {"name", "type", "function"};
+    const bool by_body = d.contains("body") || d.contains("axis");
+    if (type_s && *type_s == "rotation" && by_body) {
+      allowed.insert(allowed.end(), {"body", "axis"});
+      required.insert(required.end(), {"body", "axis"});
+    } else if (type_s && (*type_s == "rotation" || *type_s == "translation")) {
+      allowed.push_back("joint");
+      required.push_back("joint");
+    } else if (type_s && *type_s == "distance") {
+      allowed.insert(allowed.end(), {"body1", "point1", "body2", "point2"});
+      required.insert(required.end(), {"body1", "point1", "body2", "point2"});
+    } else {
+      if (type_s) {
+        const std::string g = DidYouMean(*type_s, {"rotation", "translation", "distance"});
+        rd_.Error(ptr + "/type", "unknown driver type '" + Shorten(*type_s) + "'",
+                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: rotation, translation, distance");
+      }
+      allowed.insert(allowed.end(), {"joint", "body", "axis", "body1", "point1", "body2", "point2"});
+    }
+    rd_.CheckObject(d, ptr, allowed, required, type_s ? "a " + *type_s + " driver" : "a driver");
+    auto name = rd_.Name(d, ptr, "driver");
+    bool ok = name.has_value() && type_s.has_value();
+    if (name) {
+      if (driver_names_.count(*name)) {
+        rd_.Error(ptr + "/name", "duplicate driver name '" + *name + "'", "give every driver a unique name");
+        ok = false;
+      }
+      driver_names_.insert(*name);
+    }
+    Driver drv;
+    double scale = length_;
+    if (type_s && *type_s == "rotation" && by_body) {
+      ok = DriverOnBody(d, ptr, &drv) && ok;
+      scale = angle_;
+    } else if (type_s && (*type_s == "rotation" || *type_s == "translation")) {
+      ok = DriverOnJoint(d, ptr, *type_s, &drv) && ok;
+      scale = *type_s == "rotation" ? angle_ : length_;
+    } else if (type_s && *type_s == "distance") {
+      ok = DriverBetweenPoints(d, ptr, &drv) && ok;
+    } else {
+      ok = false;
+    }
+    if (d.contains("function")) {
+      auto f = ReadFunction(rd_, d.at("function"), ptr + "/function", scale);
+      if (f)
+        drv.function = *f;
+      else
+        ok = false;
+    } else
+      ok = false;
+    if (!ok) return;
+    drv.name = *name;
+    model_.drivers.push_back(drv);
+  }
+
+  void ReadAnalysis(const json& doc) {
+    if (doc.contains("analysis")) {
+      const json& a = doc.at("analysis");
+      if (rd_.CheckObject(a, "/analysis", {"start", "end", "steps"}, {"start", "end", "steps"}, "'analysis'")) {
+        auto s = rd_.Number(a, "start", "/analysis");
+        auto e = rd_.Number(a, "end", "/analysis");
+        auto n = rd_.Integer(a, "steps", "/analysis");
+        if (s && e && !(*e > *s)) rd_.Error("/analysis/end", "'end' must be greater than 'start'", "set end > start");
+        if (n && *n < 1)
+          rd_.Error("/analysis/steps", "'steps' must be at least 1", "give the number of intervals (rows = steps + 1)");
+        if (n && *n > 10000000) rd_.Error("/analysis/steps", "'steps' is larger than 10,000,000", "use fewer steps");
+        if (s && e && n && *e > *s && *n >= 1 && *n <= 10000000) model_.analysis = Analysis{*s, *e, *n};
+      }
+    }
+  }
+
+  void ReadOutput(const json& o, const std::string& ptr) {
+    if (!o.is_object()) {
+      rd_.Error(ptr, "an output must be a JSON object, not " + TypeName(o));
+      return;
+    }
+    auto type_s = rd_.String(o, "type", ptr);
+    Output out;
+    std::vector<std::string> allowed = {"name", "description", "type"};
+    std::vector<std::string> required = {"name", "type"};
+    if (type_s && *type_s == "point") {
+      out.kind = OutputKind::Point;
+      allowed.insert(allowed.end(), {"body", "point"});
+      required.insert(required.end(), {"body", "point"});
+    } else if (type_s && *type_s == "joint") {
+      out.kind = OutputKind::JointCoordinate;
+      allowed.push_back("joint");
+      required.push_back("joint");
+    } else if (type_s && *type_s == "distance") {
+      out.kind = OutputKind::Distance;
+      allowed.insert(allowed.end(), {"body1", "point1", "body2", "point2"});
+      required.insert(required.end(), {"body1", "point1", "body2", "point2"});
+    } else {
+      if (type_s) {
+        const std::string g = DidYouMean(*type_s, {"point", "joint", "distance"});
+        rd_.Error(ptr + "/type", "unknown output type '" + Shorten(*type_s) + "'",
+                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: point, joint, distance");
+      }
+      allowed.insert(allowed.end(), {"body", "point", "joint", "body1", "point1", "body2", "point2"});
+    }
+    rd_.CheckObject(o, ptr, allowed, required, "an output");
+    auto name = rd_.Name(o, ptr, "output");
+    bool ok = name && type_s;
+    if (name) {
+      if (output_names_.count(*name)) {
+        rd_.Error(ptr + "/name", "duplicate output name '" + *name + "'", "give every output a unique name");
+        ok = false;
+      } else if (body_index_.count(*name)) {
+        rd_.Error(ptr + "/name", "output name '" + *name + "' is also a body name",
+                  "table columns would clash; rename it");
+        ok = false;
+      }
+      output_names_.insert(*name);
+    }
+    if (!ok) return;
+    if (out.kind == OutputKind::Point) {
+      auto b = BodyRef(o, "body", ptr);
+      auto p = LengthVector(o, "point", ptr);
+      if (!b || !p) return;
+      out.body1 = *b;
+      out.point1 = LocalPoint(*b, *p);
+    } else if (out.kind == OutputKind::JointCoordinate) {
+      auto jn = rd_.String(o, "joint", ptr);
+      if (!jn) return;
+      const auto it = joint_index_.find(*jn);
+      if (it == joint_index_.end()) {
+        std::vector<std::string> names;
+        for (const auto& kv : joint_index_) names.push_back(kv.first);
+        rd_.Error(ptr + "/joint", "unknown joint '" + Shorten(*jn) + "'", "valid joints: " + Join(names));
+        return;
+      }
+      if (it->second < 0) return;
+      const Joint& j = model_.joints[it->second];
+      if (j.type != JointType::Revolute && j.type != JointType::Prismatic && j.type != JointType::Cylindrical &&
+          j.type != JointType::Screw) {
+        rd_.Error(ptr + "/joint",
+                  std::string("joint outputs exist for revolute, prismatic, cylindrical and screw joints; '") + j.name +
+                      "' is " + JointTypeName(j.type),
+                  "use a point or distance output instead");
+        return;
+      }
+      out.joint = it->second;
+      out.body1 = j.body1;
+      out.body2 = j.body2;
+    } else {
+      auto b1 = BodyRef(o, "body1", ptr);
+      auto b2 = BodyRef(o, "body2", ptr);
+      auto p1 = LengthVector(o, "point1", ptr);
+      auto p2 = LengthVector(o, "point2", ptr);
+      if (!b1 || !b2 || !p1 || !p2) return;
+      out.body1 = *b1;
+      out.body2 = *b2;
+      out.point1 = LocalPoint(*b1, *p1);
+      out.point2 = LocalPoint(*b2, *p2);
+    }
+    out.name = *name;
+    model_.outputs.push_back(out);
+  }
+
+  void ReadExpect(const json& doc) {
+    if (doc.contains("expect")) {
+      const json& e = doc.at("expect");
+      if (rd_.CheckObject(e, "/expect", {"grubler", "mobility", "redundant", "idle", "driven"}, {}, "'expect'")) {
+        model_.expect.grubler = rd_.Integer(e, "grubler", "/expect");
+        model_.expect.mobility = rd_.Integer(e, "mobility", "/expect");
+        model_.expect.redundant = rd_.Integer(e, "redundant", "/expect");
+        model_.expect.idle = rd_.Integer(e, "idle", "/expect");
+        if (auto s = rd_.String(e, "driven", "/expect")) {
+          if (*s == "full" || *s == "under" || *s == "over")
+            model_.expect.driven = *s;
+          else
+            rd_.Error("/expect/driven", "unknown driving status '" + Shorten(*s) + "'",
+                      "use \"full\", \"under\" or \"over\"");
+        }
+      }
+    }
+  }
+
+ private:
+  std::optional<Vec3> LengthVector(const json& o, const std::string& key, const std::string& ptr) {
+    auto v = rd_.Vector(o, key, ptr, false);
+    if (v) *v *= length_;
+    return v;
+  }
+  std::optional<BodyIndex> BodyRef(const json& o, const std::string& key, const std::string& ptr) {
+    auto b = rd_.BodyRef(o, key, ptr, body_index_);
+    if (b && *b == -2) return std::nullopt;
+    return b;
+  }
+  std::pair<Vec3, Mat3> Pose(BodyIndex b) const {
+    if (b == kGround) return {Vec3::Zero(), Mat3::Identity()};
+    return {model_.bodies[b].position, CalcA(model_.bodies[b].euler)};
+  }
+  Vec3 LocalPoint(BodyIndex b, const Vec3& global) const {
+    auto [r, A] = Pose(b);
+    return Vec3(A.transpose() * (global - r));
+  }
+
+  // The geometry keys of a joint of known type, validated; adds the joint when
+  // `name` is given (the joint's name, bodies and type were valid).
+  void ReadJointGeometry(const json& jj, const std::string& ptr, const JointTypeInfo& info_ref, const std::string* name,
+                         BodyIndex body1, BodyIndex body2) {
+    const JointTypeInfo* info = &info_ref;
+    bool ok = name != nullptr;
+    Joint joint;
+    joint.type = info->type;
+    std::optional<Vec3> origin, axis, axis1, axis2, normal, p1, p2;
+    if (jj.contains("origin")) {
+      origin = LengthVector(jj, "origin", ptr);
+      ok = ok && origin;
+    }
+    if (jj.contains("axis")) {
+      axis = rd_.Vector(jj, "axis", ptr, true);
+      ok = ok && axis;
+    }
+    if (jj.contains("axis1")) {
+      axis1 = rd_.Vector(jj, "axis1", ptr, true);
+      ok = ok && axis1;
+    }
+    if (jj.contains("axis2")) {
+      axis2 = rd_.Vector(jj, "axis2", ptr, true);
+      ok = ok && axis2;
+    }
+    if (jj.contains("normal")) {
+      normal = rd_.Vector(jj, "normal", ptr, true);
+      ok = ok && normal;
+    }
+    if (jj.contains("point1")) {
+      p1 = LengthVector(jj, "point1", ptr);
+      ok = ok && p1;
+    }
+    if (jj.contains("point2")) {
+      p2 = LengthVector(jj, "point2", ptr);
+      ok = ok && p2;
+    }
+    for (const auto& key : info->geometry)
+      if (!jj.contains(key)) ok = false;
+    if (info->type == JointType::Screw) {
+      auto pitch = rd_.Number(jj, "pitch", ptr);
+      if (pitch && *pitch == 0) {
+        rd_.Error(ptr + "/pitch", "screw pitch is zero", "use a revolute joint, or give the lead per revolution");
+        ok = false;
+      } else if (pitch)
+        joint.pitch = *pitch * length_;
+      else
+        ok = false;
+    }
+    if (axis1 && axis2) {
+      const double c = axis1->normalized().dot(axis2->normalized());
+      if (std::abs(c) > 1e-6) {
+        rd_.Error(ptr + "/axis2",
+                  "universal joint axes are not perpendicular (angle " +
+                      std::to_string(std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI) + " deg)",
+                  "make axis2 perpendicular to axis1 (the cross axes of a Hooke joint are at 90 deg)");
+        ok = false;
+      }
+    }
+    if (info->type == JointType::Distance && p1 && p2) {
+      double len = (*p2 - *p1).norm();
+      if (jj.contains("length")) {
+        auto l = rd_.Number(jj, "length", ptr);
+        if (!l)
+          ok = false;
+        else if (!(*l > 0)) {
+          rd_.Error(ptr + "/length", "distance length must be positive", "give the link length");
+          ok = false;
+        } else
+          len = *l * length_;
+      }
+      if (ok && !(len > 0)) {
+        rd_.Error(ptr + "/point2", "distance joint points coincide at the design pose and no length is given",
+                  "a distance link of zero length is singular; use a spherical joint");
+        ok = false;
+      }
+      joint.length = len;
+    }
+    if (!ok) return;
+    joint.body1 = body1;
+    joint.body2 = body2;
+    AddJoint(*name, origin, axis, axis1, axis2, normal, p1, p2, &joint);
+  }
+
+  void AddJoint(const std::string& name, const std::optional<Vec3>& origin, const std::optional<Vec3>& axis,
+                const std::optional<Vec3>& axis1, const std::optional<Vec3>& axis2, const std::optional<Vec3>& normal,
+                const std::optional<Vec3>& p1, const std::optional<Vec3>& p2, Joint* joint_ptr) {
+    Joint& joint = *joint_ptr;
+    joint.name = name;
+    JointFrame global;
+    switch (joint.type) {
+      case JointType::Revolute:
+      case JointType::Prismatic:
+      case JointType::Screw:
+      case JointType::Cylindrical:
+        global = MakeFrame(*origin, *axis);
+        break;
+      case JointType::Planar:
+        global = MakeFrame(*origin, *normal);
+        break;
+      case JointType::Universal:
+        global = MakeFrame(*origin, *axis1, *axis2);
+        break;
+      case JointType::Spherical:
+        global.origin = *origin;
+        break;
+      case JointType::Distance:
+        break;
+    }
+    if (joint.type == JointType::Distance) {
+      joint.frame1.origin = LocalPoint(joint.body1, *p1);
+      joint.frame2.origin = LocalPoint(joint.body2, *p2);
+    } else {
+      auto [r1, A1] = Pose(joint.body1);
+      auto [r2, A2] = Pose(joint.body2);
+      joint.frame1 = ToLocal(global, r1, A1);
+      joint.frame2 = ToLocal(global, r2, A2);
+      if (joint.type == JointType::Universal) {
+        // body2 carries axis2 as its h (constraints.md §5, U row).
+        JointFrame g2 = MakeFrame(*origin, *axis2, *axis1);
+        joint.frame2 = ToLocal(g2, r2, A2);
+      }
+    }
+    joint_index_[joint.name] = static_cast<int>(model_.joints.size());
+    model_.joints.push_back(joint);
+  }
+
+  bool DriverOnBody(const json& d, const std::string& ptr, Driver* drv_ptr) {
+    Driver& drv = *drv_ptr;
+    bool ok = true;
+    drv.kind = DriverKind::BodyRotation;
+    auto b = BodyRef(d, "body", ptr);
+    auto axis = rd_.Vector(d, "axis", ptr, true);
+    if (b && *b == kGround) {
+      rd_.Error(ptr + "/body", "ground cannot be driven", "name a moving body");
+      ok = false;
+    } else if (b && axis) {
+      // GRRD with ground as body i (constraints.md §3.6 seed note).
+      const JointFrame global = MakeFrame(Vec3::Zero(), *axis);
+      drv.body1 = kGround;
+      drv.body2 = *b;
+      drv.frame1 = global;
+      auto [r, A] = Pose(*b);
+      drv.frame2 = ToLocal(global, r, A);
+    } else
+      ok = false;
+    return ok;
+  }
+
+  bool DriverOnJoint(const json& d, const std::string& ptr, const std::string& type, Driver* drv_ptr) {
+    Driver& drv = *drv_ptr;
+    const std::string* type_s = &type;
+    bool ok = true;
+    const bool rot = *type_s == "rotation";
+    drv.kind = rot ? DriverKind::JointRotation : DriverKind::JointTranslation;
+    auto jn = rd_.String(d, "joint", ptr);
+    if (jn) {
+      const auto it = joint_index_.find(*jn);
+      if (it == joint_index_.end()) {
+        std::vector<std::string> names;
+        for (const auto& kv : joint_index_) names.push_back(kv.first);
+        const std::string g = DidYouMean(*jn, names);
+        rd_.Error(ptr + "/joint", "unknown joint '" + Shorten(*jn) + "'",
+                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "valid joints: " + Join(names));
+        ok = false;
+      } else if (it->second < 0) {
+        ok = false;  // that joint already has an error
+      } else {
+        const Joint& j = model_.joints[it->second];
+        const bool can =
+            rot ? (j.type == JointType::Revolute || j.type == JointType::Cylindrical || j.type == JointType::Screw)
+                : (j.type == JointType::Prismatic || j.type == JointType::Cylindrical || j.type == JointType::Screw);
+        if (!can) {
+          rd_.Error(
+              ptr + "/joint",
+              std::string("a ") + *type_s + " driver cannot drive " + JointTypeName(j.type) + " joint '" + j.name + "'",
+              rot ? "rotation drivers act on revolute, cylindrical or screw joints"
+                  : "translation drivers act on prismatic, cylindrical or screw joints");
+          ok = false;
+        } else {
+          drv.joint = it->second;
+          drv.body1 = j.body1;
+          drv.body2 = j.body2;
+          drv.frame1 = j.frame1;
+          drv.frame2 = j.frame2;
+        }
+      }
+    } else
+      ok = false;
+    return ok;
+  }
+
+  bool DriverBetweenPoints(const json& d, const std::string& ptr, Driver* drv_ptr) {
+    Driver& drv = *drv_ptr;
+    bool ok = true;
+    drv.kind = DriverKind::Distance;
+    auto b1 = BodyRef(d, "body1", ptr);
+    auto b2 = BodyRef(d, "body2", ptr);
+    auto p1 = LengthVector(d, "point1", ptr);
+    auto p2 = LengthVector(d, "point2", ptr);
+    if (b1 && b2 && *b1 == *b2) {
+      rd_.Error(ptr + "/body2", "distance driver between body '" + model_.BodyName(*b1) + "' and itself",
+                "name two different bodies");
+      ok = false;
+    } else if (b1 && b2 && p1 && p2) {
+      drv.body1 = *b1;
+      drv.body2 = *b2;
+      drv.point1 = LocalPoint(*b1, *p1);
+      drv.point2 = LocalPoint(*b2, *p2);
+    } else
+      ok = false;
+    return ok;
+  }
+
+  Reader rd_;
+  Model model_;
+  std::map<std::string, BodyIndex> body_index_;
+  std::map<std::string, int> joint_index_;
+  std::set<std::string> driver_names_, output_names_;
+  double length_ = 1, angle_ = 1;
+};
+
+// Parses the text as JSON; on failure reports where (line and column) and why.
+bool ParseJson(const std::string& text, Reader& rd, json* doc_out) {
+  json& doc = *doc_out;
   try {
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
@@ -392,14 +992,19 @@ LoadResult LoadMechanismText(const std::string& text, const std::string& source_
     size_t line = 1, col = 1;
     const size_t end = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
     for (size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
+      if (text[i] == '\n') {
+        ++line;
+        col = 1;
+      } else {
+        ++col;
+      }
     }
     std::string what = e.what();
     const auto pos = what.find("syntax error");
     if (pos != std::string::npos) what = what.substr(pos);
     rd.Error("", "JSON syntax error at line " + std::to_string(line) + ", column " + std::to_string(col) + ": " + what,
              text.empty() ? "the file is empty; start from a file in mechanisms/" : "fix the JSON syntax");
-    return result;
+    return false;
   } catch (const json::out_of_range& e) {
     // nlohmann reports overflowing numbers (1e999) without a position: find the token.
     std::string what = e.what(), where;
@@ -409,489 +1014,45 @@ LoadResult LoadMechanismText(const std::string& text, const std::string& source_
       const size_t at = text.find(token);
       if (at != std::string::npos) {
         size_t line = 1, col = 1;
-        for (size_t i = 0; i < at; ++i) { if (text[i] == '\n') { ++line; col = 1; } else { ++col; } }
+        for (size_t i = 0; i < at; ++i) {
+          if (text[i] == '\n') {
+            ++line;
+            col = 1;
+          } else {
+            ++col;
+          }
+        }
         where = " at line " + std::to_string(line) + ", column " + std::to_string(col);
       }
       what = "number '" + Shorten(token) + "' is too large for a double" + where;
     }
     rd.Error("", what, "use a finite value (|x| < 1.8e308)");
-    return result;
+    return false;
   } catch (const std::exception& e) {
     rd.Error("", std::string("cannot parse the file as JSON: ") + e.what());
-    return result;
+    return false;
   }
 
-  Model model;
-  model.source = source_name;
-  if (!rd.CheckObject(doc, "", {"mechkin", "name", "description", "units", "bodies", "joints", "drivers", "analysis",
-                                "outputs", "expect"},
-                      {"mechkin", "bodies", "joints"}, "the mechanism file"))
-    return result;
+  return true;
+}
 
-  if (auto v = rd.Integer(doc, "mechkin", ""); v && *v != 1)
-    rd.Error("/mechkin", "unsupported format version " + std::to_string(*v), "this mechkin reads version 1");
-  if (auto s = rd.String(doc, "name", "")) model.name = *s;
-  if (auto s = rd.String(doc, "description", "")) model.description = *s;
+}  // namespace
 
-  // Units first: every other number depends on them.
-  if (doc.contains("units")) {
-    const json& u = doc.at("units");
-    if (rd.CheckObject(u, "/units", {"length", "angle"}, {}, "'units'")) {
-      if (auto s = rd.String(u, "length", "/units")) {
-        if (auto f = LengthUnitToSi(*s)) { model.units.length_name = *s; model.units.length_to_si = *f; }
-        else {
-          const std::string g = DidYouMean(*s, LengthUnitNames());
-          rd.Error("/units/length", "unknown length unit '" + Shorten(*s) + "'",
-                   (g.empty() ? "" : "did you mean '" + g + "'? ") + "use one of " + Join(LengthUnitNames()));
-        }
-      }
-      if (auto s = rd.String(u, "angle", "/units")) {
-        if (auto f = AngleUnitToSi(*s)) { model.units.angle_name = *s; model.units.angle_to_si = *f; }
-        else {
-          const std::string g = DidYouMean(*s, AngleUnitNames());
-          rd.Error("/units/angle", "unknown angle unit '" + Shorten(*s) + "'",
-                   (g.empty() ? "" : "did you mean '" + g + "'? ") + "use one of " + Join(AngleUnitNames()));
-        }
-      }
-    }
-  }
-  const double L = model.units.length_to_si, ANG = model.units.angle_to_si;
-  auto length_vec = [&](const json& o, const std::string& key, const std::string& ptr) -> std::optional<Vec3> {
-    auto v = rd.Vector(o, key, ptr, false);
-    if (v) *v *= L;
-    return v;
-  };
-
-  // ---- bodies
-  std::map<std::string, BodyIndex> body_index;
-  if (doc.contains("bodies")) {
-    const json& bodies = doc.at("bodies");
-    if (!bodies.is_array()) rd.Error("/bodies", "'bodies' must be an array of body objects, not " + TypeName(bodies));
-    else
-      for (size_t k = 0; k < bodies.size(); ++k) {
-        const std::string ptr = "/bodies/" + std::to_string(k);
-        const json& b = bodies[k];
-        if (!rd.CheckObject(b, ptr, {"name", "description", "position", "orientation"}, {"name", "position"}, "a body"))
-          continue;
-        Body body;
-        auto name = rd.Name(b, ptr, "body");
-        auto pos = length_vec(b, "position", ptr);
-        body.euler = Vec4(1, 0, 0, 0);
-        bool ok = name && pos;
-        if (b.contains("orientation")) {
-          auto q = ReadOrientation(rd, b.at("orientation"), ptr + "/orientation", ANG);
-          if (q) body.euler = *q; else ok = false;
-        }
-        if (name && *name == "ground") {
-          rd.Error(ptr + "/name", "'ground' is reserved for the fixed frame and cannot be a moving body",
-                   "rename the body, or attach parts to ground directly");
-          ok = false;
-        } else if (name && body_index.count(*name)) {
-          rd.Error(ptr + "/name", "duplicate body name '" + *name + "'", "give every body a unique name");
-          ok = false;
-        }
-        if (!ok) {
-          if (name && *name != "ground") body_index.emplace(*name, -2);  // known name, invalid body
-          continue;
-        }
-        body.name = *name;
-        body.position = *pos;
-        body_index[body.name] = static_cast<BodyIndex>(model.bodies.size());
-        model.bodies.push_back(body);
-      }
-  }
-  // Bodies that failed validation are known by name (-2) so that references to
-  // them do not produce a second, misleading error.
-  auto body_ref = [&](const json& o, const std::string& key, const std::string& ptr) -> std::optional<BodyIndex> {
-    auto b = rd.BodyRef(o, key, ptr, body_index);
-    if (b && *b == -2) return std::nullopt;
-    return b;
-  };
-  auto pose = [&](BodyIndex b) -> std::pair<Vec3, Mat3> {
-    if (b == kGround) return {Vec3::Zero(), Mat3::Identity()};
-    return {model.bodies[b].position, CalcA(model.bodies[b].euler)};
-  };
-  auto local_point = [&](BodyIndex b, const Vec3& global) {
-    auto [r, A] = pose(b);
-    return Vec3(A.transpose() * (global - r));
-  };
-
-  // ---- joints
-  std::map<std::string, int> joint_index;
-  std::vector<std::string> joint_type_names;
-  for (const auto& t : JointTypes()) joint_type_names.push_back(t.name);
-  if (doc.contains("joints")) {
-    const json& joints = doc.at("joints");
-    if (!joints.is_array()) rd.Error("/joints", "'joints' must be an array of joint objects, not " + TypeName(joints));
-    else
-      for (size_t k = 0; k < joints.size(); ++k) {
-        const std::string ptr = "/joints/" + std::to_string(k);
-        const json& jj = joints[k];
-        if (!jj.is_object()) { rd.Error(ptr, "a joint must be a JSON object, not " + TypeName(jj)); continue; }
-        auto type_s = rd.String(jj, "type", ptr);
-        const JointTypeInfo* info = nullptr;
-        if (type_s) {
-          for (const auto& t : JointTypes()) if (*type_s == t.name) info = &t;
-          if (!info) {
-            const std::string g = DidYouMean(*type_s, joint_type_names);
-            rd.Error(ptr + "/type", "unknown joint type '" + Shorten(*type_s) + "'",
-                     (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(joint_type_names));
-          }
-        }
-        std::vector<std::string> allowed = {"name", "description", "type", "body1", "body2"};
-        std::vector<std::string> required = {"name", "type", "body1", "body2"};
-        if (info) {
-          allowed.insert(allowed.end(), info->geometry.begin(), info->geometry.end());
-          allowed.insert(allowed.end(), info->optional.begin(), info->optional.end());
-          required.insert(required.end(), info->geometry.begin(), info->geometry.end());
-        } else {
-          for (const auto& t : JointTypes()) {
-            allowed.insert(allowed.end(), t.geometry.begin(), t.geometry.end());
-            allowed.insert(allowed.end(), t.optional.begin(), t.optional.end());
-          }
-        }
-        rd.CheckObject(jj, ptr, allowed, required, info ? std::string("a ") + info->name + " joint" : "a joint");
-        auto name = rd.Name(jj, ptr, "joint");
-        auto b1 = body_ref(jj, "body1", ptr);
-        auto b2 = body_ref(jj, "body2", ptr);
-        bool ok = name && b1 && b2 && info;
-        if (name) {
-          if (joint_index.count(*name)) {
-            rd.Error(ptr + "/name", "duplicate joint name '" + *name + "'", "give every joint a unique name");
-            ok = false;
-          }
-          joint_index.emplace(*name, -2);
-        }
-        if (b1 && b2 && *b1 == *b2) {
-          rd.Error(ptr + "/body2", "joint connects body '" + model.BodyName(*b1) + "' to itself",
-                   "a joint needs two different bodies (either may be ground)");
-          ok = false;
-        }
-        if (!info) continue;
-        Joint joint;
-        joint.type = info->type;
-        std::optional<Vec3> origin, axis, axis1, axis2, normal, p1, p2;
-        if (jj.contains("origin")) { origin = length_vec(jj, "origin", ptr); ok = ok && origin; }
-        if (jj.contains("axis")) { axis = rd.Vector(jj, "axis", ptr, true); ok = ok && axis; }
-        if (jj.contains("axis1")) { axis1 = rd.Vector(jj, "axis1", ptr, true); ok = ok && axis1; }
-        if (jj.contains("axis2")) { axis2 = rd.Vector(jj, "axis2", ptr, true); ok = ok && axis2; }
-        if (jj.contains("normal")) { normal = rd.Vector(jj, "normal", ptr, true); ok = ok && normal; }
-        if (jj.contains("point1")) { p1 = length_vec(jj, "point1", ptr); ok = ok && p1; }
-        if (jj.contains("point2")) { p2 = length_vec(jj, "point2", ptr); ok = ok && p2; }
-        for (const auto& key : info->geometry) if (!jj.contains(key)) ok = false;
-        if (info->type == JointType::Screw) {
-          auto pitch = rd.Number(jj, "pitch", ptr);
-          if (pitch && *pitch == 0) {
-            rd.Error(ptr + "/pitch", "screw pitch is zero", "use a revolute joint, or give the lead per revolution");
-            ok = false;
-          } else if (pitch) joint.pitch = *pitch * L;
-          else ok = false;
-        }
-        if (axis1 && axis2) {
-          const double c = axis1->normalized().dot(axis2->normalized());
-          if (std::abs(c) > 1e-6) {
-            rd.Error(ptr + "/axis2", "universal joint axes are not perpendicular (angle " +
-                                         std::to_string(std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI) + " deg)",
-                     "make axis2 perpendicular to axis1 (the cross axes of a Hooke joint are at 90 deg)");
-            ok = false;
-          }
-        }
-        if (info->type == JointType::Distance && p1 && p2) {
-          double len = (*p2 - *p1).norm();
-          if (jj.contains("length")) {
-            auto l = rd.Number(jj, "length", ptr);
-            if (!l) ok = false;
-            else if (!(*l > 0)) { rd.Error(ptr + "/length", "distance length must be positive", "give the link length"); ok = false; }
-            else len = *l * L;
-          }
-          if (ok && !(len > 0)) {
-            rd.Error(ptr + "/point2", "distance joint points coincide at the design pose and no length is given",
-                     "a distance link of zero length is singular; use a spherical joint");
-            ok = false;
-          }
-          joint.length = len;
-        }
-        if (!ok) continue;
-        joint.name = *name;
-        joint.body1 = *b1;
-        joint.body2 = *b2;
-        JointFrame global;
-        switch (joint.type) {
-          case JointType::Revolute: case JointType::Prismatic: case JointType::Screw: case JointType::Cylindrical:
-            global = MakeFrame(*origin, *axis);
-            break;
-          case JointType::Planar: global = MakeFrame(*origin, *normal); break;
-          case JointType::Universal: global = MakeFrame(*origin, *axis1, *axis2); break;
-          case JointType::Spherical: global.origin = *origin; break;
-          case JointType::Distance: break;
-        }
-        if (joint.type == JointType::Distance) {
-          joint.frame1.origin = local_point(joint.body1, *p1);
-          joint.frame2.origin = local_point(joint.body2, *p2);
-        } else {
-          auto [r1, A1] = pose(joint.body1);
-          auto [r2, A2] = pose(joint.body2);
-          joint.frame1 = ToLocal(global, r1, A1);
-          joint.frame2 = ToLocal(global, r2, A2);
-          if (joint.type == JointType::Universal) {
-            // body2 carries axis2 as its h (constraints.md §5, U row).
-            JointFrame g2 = MakeFrame(*origin, *axis2, *axis1);
-            joint.frame2 = ToLocal(g2, r2, A2);
-          }
-        }
-        joint_index[joint.name] = static_cast<int>(model.joints.size());
-        model.joints.push_back(joint);
-      }
-  }
-
-  // ---- drivers
-  std::set<std::string> driver_names;
-  if (doc.contains("drivers")) {
-    const json& drivers = doc.at("drivers");
-    if (!drivers.is_array()) rd.Error("/drivers", "'drivers' must be an array of driver objects, not " + TypeName(drivers));
-    else
-      for (size_t k = 0; k < drivers.size(); ++k) {
-        const std::string ptr = "/drivers/" + std::to_string(k);
-        const json& d = drivers[k];
-        if (!d.is_object()) { rd.Error(ptr, "a driver must be a JSON object, not " + TypeName(d)); continue; }
-        auto type_s = rd.String(d, "type", ptr);
-        std::vector<std::string> allowed = {"name", "description", "type", "function"};
-        std::vector<std::string> required = {"name", "type", "function"};
-        const bool by_body = d.contains("body") || d.contains("axis");
-        if (type_s && *type_s == "rotation" && by_body) {
-          allowed.insert(allowed.end(), {"body", "axis"});
-          required.insert(required.end(), {"body", "axis"});
-        } else if (type_s && (*type_s == "rotation" || *type_s == "translation")) {
-          allowed.push_back("joint");
-          required.push_back("joint");
-        } else if (type_s && *type_s == "distance") {
-          allowed.insert(allowed.end(), {"body1", "point1", "body2", "point2"});
-          required.insert(required.end(), {"body1", "point1", "body2", "point2"});
-        } else {
-          if (type_s) {
-            const std::string g = DidYouMean(*type_s, {"rotation", "translation", "distance"});
-            rd.Error(ptr + "/type", "unknown driver type '" + Shorten(*type_s) + "'",
-                     (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: rotation, translation, distance");
-          }
-          allowed.insert(allowed.end(), {"joint", "body", "axis", "body1", "point1", "body2", "point2"});
-        }
-        rd.CheckObject(d, ptr, allowed, required, type_s ? "a " + *type_s + " driver" : "a driver");
-        auto name = rd.Name(d, ptr, "driver");
-        bool ok = name.has_value() && type_s.has_value();
-        if (name) {
-          if (driver_names.count(*name)) {
-            rd.Error(ptr + "/name", "duplicate driver name '" + *name + "'", "give every driver a unique name");
-            ok = false;
-          }
-          driver_names.insert(*name);
-        }
-        Driver drv;
-        double scale = L;
-        if (type_s && *type_s == "rotation" && by_body) {
-          drv.kind = DriverKind::BodyRotation;
-          scale = ANG;
-          auto b = body_ref(d, "body", ptr);
-          auto axis = rd.Vector(d, "axis", ptr, true);
-          if (b && *b == kGround) {
-            rd.Error(ptr + "/body", "ground cannot be driven", "name a moving body");
-            ok = false;
-          } else if (b && axis) {
-            // GRRD with ground as body i (constraints.md §3.6 seed note).
-            const JointFrame global = MakeFrame(Vec3::Zero(), *axis);
-            drv.body1 = kGround;
-            drv.body2 = *b;
-            drv.frame1 = global;
-            auto [r, A] = pose(*b);
-            drv.frame2 = ToLocal(global, r, A);
-          } else ok = false;
-        } else if (type_s && (*type_s == "rotation" || *type_s == "translation")) {
-          const bool rot = *type_s == "rotation";
-          drv.kind = rot ? DriverKind::JointRotation : DriverKind::JointTranslation;
-          scale = rot ? ANG : L;
-          auto jn = rd.String(d, "joint", ptr);
-          if (jn) {
-            const auto it = joint_index.find(*jn);
-            if (it == joint_index.end()) {
-              std::vector<std::string> names;
-              for (const auto& kv : joint_index) names.push_back(kv.first);
-              const std::string g = DidYouMean(*jn, names);
-              rd.Error(ptr + "/joint", "unknown joint '" + Shorten(*jn) + "'",
-                       (g.empty() ? "" : "did you mean '" + g + "'? ") + "valid joints: " + Join(names));
-              ok = false;
-            } else if (it->second < 0) {
-              ok = false;  // that joint already has an error
-            } else {
-              const Joint& j = model.joints[it->second];
-              const bool can = rot ? (j.type == JointType::Revolute || j.type == JointType::Cylindrical ||
-                                      j.type == JointType::Screw)
-                                   : (j.type == JointType::Prismatic || j.type == JointType::Cylindrical ||
-                                      j.type == JointType::Screw);
-              if (!can) {
-                rd.Error(ptr + "/joint", std::string("a ") + *type_s + " driver cannot drive " + JointTypeName(j.type) +
-                                             " joint '" + j.name + "'",
-                         rot ? "rotation drivers act on revolute, cylindrical or screw joints"
-                             : "translation drivers act on prismatic, cylindrical or screw joints");
-                ok = false;
-              } else {
-                drv.joint = it->second;
-                drv.body1 = j.body1;
-                drv.body2 = j.body2;
-                drv.frame1 = j.frame1;
-                drv.frame2 = j.frame2;
-              }
-            }
-          } else ok = false;
-        } else if (type_s && *type_s == "distance") {
-          drv.kind = DriverKind::Distance;
-          auto b1 = body_ref(d, "body1", ptr);
-          auto b2 = body_ref(d, "body2", ptr);
-          auto p1 = length_vec(d, "point1", ptr);
-          auto p2 = length_vec(d, "point2", ptr);
-          if (b1 && b2 && *b1 == *b2) {
-            rd.Error(ptr + "/body2", "distance driver between body '" + model.BodyName(*b1) + "' and itself",
-                     "name two different bodies");
-            ok = false;
-          } else if (b1 && b2 && p1 && p2) {
-            drv.body1 = *b1;
-            drv.body2 = *b2;
-            drv.point1 = local_point(*b1, *p1);
-            drv.point2 = local_point(*b2, *p2);
-          } else ok = false;
-        } else {
-          ok = false;
-        }
-        if (d.contains("function")) {
-          auto f = ReadFunction(rd, d.at("function"), ptr + "/function", scale);
-          if (f) drv.function = *f; else ok = false;
-        } else ok = false;
-        if (!ok) continue;
-        drv.name = *name;
-        model.drivers.push_back(drv);
-      }
-  }
-
-  // ---- analysis
-  if (doc.contains("analysis")) {
-    const json& a = doc.at("analysis");
-    if (rd.CheckObject(a, "/analysis", {"start", "end", "steps"}, {"start", "end", "steps"}, "'analysis'")) {
-      auto s = rd.Number(a, "start", "/analysis");
-      auto e = rd.Number(a, "end", "/analysis");
-      auto n = rd.Integer(a, "steps", "/analysis");
-      if (s && e && !(*e > *s)) rd.Error("/analysis/end", "'end' must be greater than 'start'", "set end > start");
-      if (n && *n < 1) rd.Error("/analysis/steps", "'steps' must be at least 1", "give the number of intervals (rows = steps + 1)");
-      if (n && *n > 10000000) rd.Error("/analysis/steps", "'steps' is larger than 10,000,000", "use fewer steps");
-      if (s && e && n && *e > *s && *n >= 1 && *n <= 10000000) model.analysis = Analysis{*s, *e, *n};
-    }
-  }
-
-  // ---- outputs
-  std::set<std::string> output_names;
-  if (doc.contains("outputs")) {
-    const json& outs = doc.at("outputs");
-    if (!outs.is_array()) rd.Error("/outputs", "'outputs' must be an array, not " + TypeName(outs));
-    else
-      for (size_t k = 0; k < outs.size(); ++k) {
-        const std::string ptr = "/outputs/" + std::to_string(k);
-        const json& o = outs[k];
-        if (!o.is_object()) { rd.Error(ptr, "an output must be a JSON object, not " + TypeName(o)); continue; }
-        auto type_s = rd.String(o, "type", ptr);
-        Output out;
-        std::vector<std::string> allowed = {"name", "description", "type"};
-        std::vector<std::string> required = {"name", "type"};
-        if (type_s && *type_s == "point") {
-          out.kind = OutputKind::Point;
-          allowed.insert(allowed.end(), {"body", "point"});
-          required.insert(required.end(), {"body", "point"});
-        } else if (type_s && *type_s == "joint") {
-          out.kind = OutputKind::JointCoordinate;
-          allowed.push_back("joint");
-          required.push_back("joint");
-        } else if (type_s && *type_s == "distance") {
-          out.kind = OutputKind::Distance;
-          allowed.insert(allowed.end(), {"body1", "point1", "body2", "point2"});
-          required.insert(required.end(), {"body1", "point1", "body2", "point2"});
-        } else {
-          if (type_s) {
-            const std::string g = DidYouMean(*type_s, {"point", "joint", "distance"});
-            rd.Error(ptr + "/type", "unknown output type '" + Shorten(*type_s) + "'",
-                     (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: point, joint, distance");
-          }
-          allowed.insert(allowed.end(), {"body", "point", "joint", "body1", "point1", "body2", "point2"});
-        }
-        rd.CheckObject(o, ptr, allowed, required, "an output");
-        auto name = rd.Name(o, ptr, "output");
-        bool ok = name && type_s;
-        if (name) {
-          if (output_names.count(*name)) {
-            rd.Error(ptr + "/name", "duplicate output name '" + *name + "'", "give every output a unique name");
-            ok = false;
-          } else if (body_index.count(*name)) {
-            rd.Error(ptr + "/name", "output name '" + *name + "' is also a body name", "table columns would clash; rename it");
-            ok = false;
-          }
-          output_names.insert(*name);
-        }
-        if (!ok) continue;
-        if (out.kind == OutputKind::Point) {
-          auto b = body_ref(o, "body", ptr);
-          auto p = length_vec(o, "point", ptr);
-          if (!b || !p) continue;
-          out.body1 = *b;
-          out.point1 = local_point(*b, *p);
-        } else if (out.kind == OutputKind::JointCoordinate) {
-          auto jn = rd.String(o, "joint", ptr);
-          if (!jn) continue;
-          const auto it = joint_index.find(*jn);
-          if (it == joint_index.end()) {
-            std::vector<std::string> names;
-            for (const auto& kv : joint_index) names.push_back(kv.first);
-            rd.Error(ptr + "/joint", "unknown joint '" + Shorten(*jn) + "'", "valid joints: " + Join(names));
-            continue;
-          }
-          if (it->second < 0) continue;
-          const Joint& j = model.joints[it->second];
-          if (j.type != JointType::Revolute && j.type != JointType::Prismatic && j.type != JointType::Cylindrical &&
-              j.type != JointType::Screw) {
-            rd.Error(ptr + "/joint", std::string("joint outputs exist for revolute, prismatic, cylindrical and screw joints; '") +
-                                         j.name + "' is " + JointTypeName(j.type),
-                     "use a point or distance output instead");
-            continue;
-          }
-          out.joint = it->second;
-          out.body1 = j.body1;
-          out.body2 = j.body2;
-        } else {
-          auto b1 = body_ref(o, "body1", ptr);
-          auto b2 = body_ref(o, "body2", ptr);
-          auto p1 = length_vec(o, "point1", ptr);
-          auto p2 = length_vec(o, "point2", ptr);
-          if (!b1 || !b2 || !p1 || !p2) continue;
-          out.body1 = *b1;
-          out.body2 = *b2;
-          out.point1 = local_point(*b1, *p1);
-          out.point2 = local_point(*b2, *p2);
-        }
-        out.name = *name;
-        model.outputs.push_back(out);
-      }
-  }
-
-  // ---- expect
-  if (doc.contains("expect")) {
-    const json& e = doc.at("expect");
-    if (rd.CheckObject(e, "/expect", {"grubler", "mobility", "redundant", "idle", "driven"}, {}, "'expect'")) {
-      model.expect.grubler = rd.Integer(e, "grubler", "/expect");
-      model.expect.mobility = rd.Integer(e, "mobility", "/expect");
-      model.expect.redundant = rd.Integer(e, "redundant", "/expect");
-      model.expect.idle = rd.Integer(e, "idle", "/expect");
-      if (auto s = rd.String(e, "driven", "/expect")) {
-        if (*s == "full" || *s == "under" || *s == "over") model.expect.driven = *s;
-        else rd.Error("/expect/driven", "unknown driving status '" + Shorten(*s) + "'", "use \"full\", \"under\" or \"over\"");
-      }
-    }
-  }
-
+LoadResult LoadMechanismText(const std::string& text, const std::string& source_name) {
+  LoadResult result;
+  SpecReader spec(&result);
+  json doc;
+  if (!ParseJson(text, spec.reader(), &doc) || !spec.ReadHeader(doc)) return result;
+  spec.model().source = source_name;
+  spec.ReadUnits(doc);
+  spec.ReadArray(doc, "bodies", "body", [&](const json& e, const std::string& p) { spec.ReadBody(e, p); });
+  spec.ReadArray(doc, "joints", "joint", [&](const json& e, const std::string& p) { spec.ReadJoint(e, p); });
+  spec.ReadArray(doc, "drivers", "driver", [&](const json& e, const std::string& p) { spec.ReadDriver(e, p); });
+  spec.ReadAnalysis(doc);
+  spec.ReadArray(doc, "outputs", "output", [&](const json& e, const std::string& p) { spec.ReadOutput(e, p); });
+  spec.ReadExpect(doc);
   if (!result.errors.empty()) return result;
+  Model& model = spec.model();
   model.characteristic_length = CharacteristicLength(model);
   result.model = std::move(model);
   return result;
