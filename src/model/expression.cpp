@@ -1,6 +1,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 
 #include "model/time_function.hpp"
@@ -24,7 +25,9 @@ class ExpressionParser {
 
  private:
   using Op = Expression::Op;
-  static constexpr int kMaxDepth = 100;
+  // Each level of parentheses or of a function call costs 5 levels of the
+  // recursive descent (sum, product, unary, power, primary): 325 allows 64.
+  static constexpr int kMaxDepth = 5 * Expression::kMaxNesting + 5;
 
   int Col() const { return static_cast<int>(pos_) + 1; }
   void Skip() { while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_; }
@@ -34,7 +37,10 @@ class ExpressionParser {
     return static_cast<int>(e_->nodes_.size()) - 1;
   }
   void CheckDepth(int depth) const {
-    if (depth > kMaxDepth) throw ExpressionError("expression nested too deeply", Col());
+    if (depth > kMaxDepth)
+      throw ExpressionError("expression nested too deeply (at most " + std::to_string(Expression::kMaxNesting) +
+                                " levels of parentheses, function calls, signs and powers)",
+                            Col());
   }
 
   int ParseSum(int depth) {
@@ -80,7 +86,27 @@ class ExpressionParser {
     }
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return ParseNumber();
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') return ParseName(depth);
-    throw ExpressionError("unexpected '" + std::string(1, c) + "'", Col());
+    throw ExpressionError(UnexpectedCharacter(), Col());
+  }
+  // "unexpected '×'": non-ASCII look-alikes get their ASCII replacement named.
+  std::string UnexpectedCharacter() const {
+    const unsigned char c = static_cast<unsigned char>(s_[pos_]);
+    if (c < 0x80) return "unexpected '" + std::string(1, static_cast<char>(c)) + "'";
+    static const std::pair<const char*, const char*> kLookAlikes[] = {
+        {"\xe2\x88\x92", "'-' (the text has a Unicode minus sign U+2212)"},
+        {"\xe2\x80\x93", "'-' (the text has an en dash U+2013)"},
+        {"\xc3\x97", "'*' (the text has a multiplication sign U+00D7)"},
+        {"\xc2\xb7", "'*' (the text has a middle dot U+00B7)"},
+        {"\xc3\xb7", "'/' (the text has a division sign U+00F7)"},
+        {"\xc2\xa0", "a plain space (the text has a non-breaking space U+00A0)"},
+        {"\xcf\x80", "'pi' (the text has the Greek letter U+03C0)"}};
+    for (const auto& [bytes, fix] : kLookAlikes)
+      if (s_.compare(pos_, std::strlen(bytes), bytes) == 0) return std::string("non-ASCII character: use ") + fix;
+    return "non-ASCII character (byte 0x" + Hex(c) + "): expressions use ASCII only";
+  }
+  static std::string Hex(unsigned char c) {
+    const char* digits = "0123456789abcdef";
+    return {digits[c >> 4], digits[c & 15]};
   }
   int ParseNumber() {
     const size_t start = pos_;
@@ -135,35 +161,47 @@ class ExpressionParser {
 };
 
 Expression Expression::Parse(const std::string& text) {
+  if (text.size() > kMaxLength)
+    throw ExpressionError("expression is longer than " + std::to_string(kMaxLength) + " characters (" +
+                              std::to_string(text.size()) + ")",
+                          static_cast<int>(kMaxLength));
   Expression e;
   e.text_ = text;
   ExpressionParser(&e).Run();
   return e;
 }
 
-Jet Expression::Eval(double t) const { return EvalNode(root_, Jet::Variable(t)); }
+// Nodes are stored children first (the parser adds a node after its operands),
+// so one pass in index order evaluates the tree without recursion: no stack
+// depth grows with the length of the expression.
+Jet Expression::Eval(double t) const {
+  thread_local std::vector<Jet> value;
+  value.resize(nodes_.size());
+  const Jet time = Jet::Variable(t);
+  for (size_t i = 0; i < nodes_.size(); ++i) value[i] = EvalNode(nodes_[i], time, value);
+  return value[root_];
+}
 
-Jet Expression::EvalNode(int i, const Jet& t) const {
-  const Node& n = nodes_[i];
+Jet Expression::EvalNode(const Node& n, const Jet& t, const std::vector<Jet>& v) {
   switch (n.op) {
     case Op::Const: return Jet::Constant(n.value);
     case Op::Time: return t;
-    case Op::Neg: return -EvalNode(n.a, t);
-    case Op::Add: return EvalNode(n.a, t) + EvalNode(n.b, t);
-    case Op::Sub: return EvalNode(n.a, t) - EvalNode(n.b, t);
-    case Op::Mul: return EvalNode(n.a, t) * EvalNode(n.b, t);
-    case Op::Div: return EvalNode(n.a, t) / EvalNode(n.b, t);
-    case Op::Pow: return Pow(EvalNode(n.a, t), EvalNode(n.b, t));
-    case Op::Sin: return Sin(EvalNode(n.a, t));
-    case Op::Cos: return Cos(EvalNode(n.a, t));
-    case Op::Tan: return Tan(EvalNode(n.a, t));
-    case Op::Asin: return Asin(EvalNode(n.a, t));
-    case Op::Acos: return Acos(EvalNode(n.a, t));
-    case Op::Atan: return Atan(EvalNode(n.a, t));
-    case Op::Atan2: return Atan2(EvalNode(n.a, t), EvalNode(n.b, t));
-    case Op::Exp: return Exp(EvalNode(n.a, t));
-    case Op::Log: return Log(EvalNode(n.a, t));
-    case Op::Sqrt: return Sqrt(EvalNode(n.a, t));
+    case Op::Neg: return -v[n.a];
+    case Op::Add: return v[n.a] + v[n.b];
+    case Op::Sub: return v[n.a] - v[n.b];
+    case Op::Mul: return v[n.a] * v[n.b];
+    case Op::Div: return v[n.a] / v[n.b];
+    case Op::Pow: return Pow(v[n.a], v[n.b]);
+    case Op::Sin: return Sin(v[n.a]);
+    case Op::Cos: return Cos(v[n.a]);
+    case Op::Tan: return Tan(v[n.a]);
+    case Op::Asin: return Asin(v[n.a]);
+    case Op::Acos: return Acos(v[n.a]);
+    case Op::Atan: return Atan(v[n.a]);
+    case Op::Atan2: return Atan2(v[n.a], v[n.b]);
+    case Op::Exp: return Exp(v[n.a]);
+    case Op::Log: return Log(v[n.a]);
+    case Op::Sqrt: return Sqrt(v[n.a]);
   }
   return Jet{};
 }

@@ -1,6 +1,13 @@
 #include "model/loader.hpp"
 
 #include <Eigen/SVD>
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -142,7 +149,7 @@ class Reader {
     const json& v = obj.at(key);
     if (v.is_number_integer() || v.is_number_unsigned()) {
       if (v.is_number_unsigned() ? v.get<unsigned long long>() > 1000000000ull
-                                 : std::llabs(v.get<long long>()) > 1000000000ll) {
+                                 : (v.get<long long>() > 1000000000ll || v.get<long long>() < -1000000000ll)) {
         Error(ptr + "/" + key, "'" + key + "' is out of range", "use an integer of magnitude below 1e9");
         return std::nullopt;
       }
@@ -615,6 +622,7 @@ class SpecReader {
     if (!ok) return;
     drv.name = *name;
     model_.drivers.push_back(drv);
+    driver_pointers_.push_back(ptr);
   }
 
   void ReadAnalysis(const json& doc) {
@@ -740,7 +748,54 @@ class SpecReader {
     }
   }
 
+  // Every driver function over the analysis span, on the table's own grid (at most
+  // 2001 points, both ends included): where it or one of its four derivatives is
+  // undefined or not finite, `run` could not go on, so the file is refused here.
+  // A driver that turns more than 90° (or moves more than the mechanism's size)
+  // between two rows gets a warning: the steps cannot follow it.
+  void CheckDriverSpans() {
+    if (!model_.analysis) return;
+    const Analysis& an = *model_.analysis;
+    const int points = std::min(an.steps, 2000);
+    for (size_t d = 0; d < model_.drivers.size(); ++d) {
+      const Driver& drv = model_.drivers[d];
+      const std::string ptr = driver_pointers_[d] + "/function";
+      const bool angle = drv.kind == DriverKind::JointRotation || drv.kind == DriverKind::BodyRotation;
+      double worst_rate = 0, worst_t = an.start;
+      for (int k = 0; k <= points; ++k) {
+        const double t = k == points ? an.end : an.start + (an.end - an.start) * k / points;
+        std::string why;
+        try {
+          const Jet j = drv.function.Eval(t);
+          for (int o = 0; o <= kMaxOrder && why.empty(); ++o)
+            if (!std::isfinite(j.c[o])) why = o == 0 ? "its value is not finite" : "its derivative of order " + std::to_string(o) + " is not finite";
+          if (why.empty() && std::abs(j.c[1]) > worst_rate) { worst_rate = std::abs(j.c[1]); worst_t = t; }
+        } catch (const std::exception& e) {
+          why = e.what();
+        }
+        if (!why.empty()) {
+          rd_.Error(ptr, "driver '" + drv.name + "' cannot be evaluated at t = " + FormatTime(t) + " s of the analysis span: " + why,
+                    "change the function, or start or end the analysis where it is defined (and differentiable)");
+          break;
+        }
+      }
+      const double per_step = worst_rate * (an.end - an.start) / an.steps;
+      const double limit = angle ? M_PI / 2 : model_.characteristic_length;
+      if (per_step > limit)
+        rd_.Warn(ptr, "driver '" + drv.name + "' moves " + FormatTime(per_step / (angle ? angle_ : length_)) + " " +
+                          (angle ? model_.units.angle_name : model_.units.length_name) + " between two rows near t = " +
+                          FormatTime(worst_t) + " s",
+                 "use more steps (analysis/steps) so that each step follows the motion");
+    }
+  }
+
  private:
+  static std::string FormatTime(double t) {
+    std::ostringstream o;
+    o.precision(10);
+    o << t;
+    return o.str();
+  }
   std::optional<Vec3> LengthVector(const json& o, const std::string& key, const std::string& ptr) {
     auto v = rd_.Vector(o, key, ptr, false);
     if (v) *v *= length_;
@@ -979,6 +1034,7 @@ class SpecReader {
   std::map<std::string, BodyIndex> body_index_;
   std::map<std::string, int> joint_index_;
   std::set<std::string> driver_names_, output_names_;
+  std::vector<std::string> driver_pointers_;  // per model driver, its place in the file
   double length_ = 1, angle_ = 1;
 };
 
@@ -1054,35 +1110,59 @@ LoadResult LoadMechanismText(const std::string& text, const std::string& source_
   if (!result.errors.empty()) return result;
   Model& model = spec.model();
   model.characteristic_length = CharacteristicLength(model);
+  spec.CheckDriverSpans();
+  if (!result.errors.empty()) return result;
   result.model = std::move(model);
   return result;
 }
 
+namespace {
+
+// Reads all of `fd` up to the size limit. A stream that stays silent longer
+// than `timeout_ms` (a FIFO with no writer, a terminal) is given up on.
+bool ReadStream(int fd, std::string* text, std::string* why, int timeout_ms) {
+  char buf[1 << 16];
+  for (;;) {
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, timeout_ms);
+    if (ready == 0) { *why = "nothing arrived for " + std::to_string(timeout_ms / 1000) + " s"; return false; }
+    if (ready < 0 && errno == EINTR) continue;
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) { *why = std::strerror(errno); return false; }
+    if (n == 0) return true;
+    if (text->size() + static_cast<size_t>(n) > kMaxFileBytes) { *why = "larger than 256 MiB"; return false; }
+    text->append(buf, static_cast<size_t>(n));
+  }
+}
+
+}  // namespace
+
 LoadResult LoadMechanismFile(const std::string& path) {
   LoadResult result;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    result.errors.push_back({"", "cannot open '" + path + "'", "check the path and permissions"});
+  auto fail = [&](const std::string& msg, const std::string& fix) {
+    result.errors.push_back({"", msg, fix});
     return result;
-  }
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) {
-    result.errors.push_back({"", "cannot read '" + path + "' (is it a directory?)", "give a mechanism JSON file"});
-    return result;
-  }
-  if (static_cast<std::size_t>(size) > kMaxFileBytes) {
-    result.errors.push_back({"", "file is larger than 256 MiB", "a mechanism file is a few kilobytes; check the path"});
-    return result;
-  }
-  in.seekg(0);
-  std::string text(static_cast<size_t>(size), '\0');
-  in.read(text.data(), size);
-  if (!in) {
-    result.errors.push_back({"", "cannot read '" + path + "'", "check the path and permissions"});
-    return result;
-  }
-  return LoadMechanismText(text, path);
+  };
+  const bool standard_input = path == "-";
+  struct stat st {};
+  if (!standard_input && ::stat(path.c_str(), &st) != 0)
+    return fail("cannot open '" + path + "': " + std::strerror(errno), "check the path and permissions");
+  if (!standard_input && S_ISDIR(st.st_mode))
+    return fail("'" + path + "' is a directory", "give a mechanism JSON file inside it");
+  if (!standard_input && (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) || S_ISSOCK(st.st_mode)))
+    return fail("'" + path + "' is a device, not a file", "give a mechanism JSON file");
+  if (!standard_input && S_ISREG(st.st_mode) && static_cast<std::size_t>(st.st_size) > kMaxFileBytes)
+    return fail("file is larger than 256 MiB", "a mechanism file is a few kilobytes; check the path");
+  // Pipes, FIFOs and the standard input are read as streams, with a time-out.
+  const int fd = standard_input ? 0 : ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return fail("cannot open '" + path + "': " + std::strerror(errno), "check the path and permissions");
+  if (!standard_input) ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  std::string text, why;
+  const bool ok = ReadStream(fd, &text, &why, 10000);
+  if (!standard_input) ::close(fd);
+  if (!ok) return fail("cannot read '" + path + "': " + why, "give a complete mechanism JSON file");
+  return LoadMechanismText(text, standard_input ? "<stdin>" : path);
 }
 
 }  // namespace mechkin

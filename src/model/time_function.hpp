@@ -22,6 +22,8 @@ struct ExpressionError : std::runtime_error {
 /// sin cos tan asin acos atan atan2 exp log sqrt.
 class Expression {
  public:
+  static constexpr int kMaxNesting = 64;       // parentheses / calls / signs / powers
+  static constexpr size_t kMaxLength = 65536;  // characters
   /// Throws ExpressionError naming the column of the bad token.
   static Expression Parse(const std::string& text);
   /// Value and derivatives at t. Throws JetDomainError outside the domain.
@@ -32,7 +34,7 @@ class Expression {
   enum class Op { Const, Time, Neg, Add, Sub, Mul, Div, Pow, Sin, Cos, Tan, Asin, Acos, Atan,
                   Atan2, Exp, Log, Sqrt };
   struct Node { Op op; double value = 0; int a = -1, b = -1; };
-  Jet EvalNode(int index, const Jet& t) const;
+  static Jet EvalNode(const Node& node, const Jet& t, const std::vector<Jet>& values);
   friend class ExpressionParser;
   std::string text_;
   std::vector<Node> nodes_;
