@@ -62,16 +62,33 @@ bool AssembleDesignPose(const ConstraintSystem& sys, const SolveOptions& solve, 
 
 namespace {
 
+constexpr int kMaxContinuationSteps = 1000;
+
+bool IsAngle(const Driver& d) { return d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation; }
+
 // Number of continuation increments: at most 10° per rotation driver and 5 % of
-// the characteristic length per translation or distance driver.
-int ContinuationSteps(const Model& model, const std::vector<Jet>& target) {
+// the characteristic length per translation or distance driver. Computed in
+// floating point and capped, so a far start never overflows an int.
+double ContinuationSteps(const Model& model, const std::vector<double>& from, const std::vector<double>& to) {
   double worst = 0;
-  for (size_t d = 0; d < model.drivers.size(); ++d) {
-    const double delta = std::abs(target[d].c[0] - DesignDriverValue(model, model.drivers[d]));
-    const bool angle = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation;
-    worst = std::max(worst, delta / (angle ? 10 * M_PI / 180 : 0.05 * model.characteristic_length));
-  }
-  return std::max(1, static_cast<int>(std::ceil(worst)));
+  for (size_t d = 0; d < model.drivers.size(); ++d)
+    worst = std::max(worst, std::abs(to[d] - from[d]) /
+                                (IsAngle(model.drivers[d]) ? 10 * M_PI / 180 : 0.05 * model.characteristic_length));
+  return std::max(1.0, std::ceil(worst));
+}
+
+// The pose depends on a rotation driver's value only modulo a full turn. When
+// the ramp to `start` would be absurdly long (a far start time, thousands of
+// turns), angles are ramped to the equivalent value nearest the design pose
+// instead; the multi-turn angle is then set to the driver's true value.
+std::vector<double> ContinuationTargets(const Model& model, const std::vector<double>& from, std::vector<double> to) {
+  if (ContinuationSteps(model, from, to) <= kMaxContinuationSteps) return to;
+  // A screw couples its angle to a slide: its turns cannot be dropped.
+  for (const Joint& j : model.joints)
+    if (j.type == JointType::Screw) return to;
+  for (size_t d = 0; d < model.drivers.size(); ++d)
+    if (IsAngle(model.drivers[d])) to[d] = from[d] + std::remainder(to[d] - from[d], 2 * M_PI);
+  return to;
 }
 
 }  // namespace
@@ -81,16 +98,28 @@ bool ContinueToStart(KinematicsWorkspace& ws, double start, const SolveOptions& 
   const ConstraintSystem& sys = ws.system();
   const Model& model = sys.model();
   EvalDriverFunctions(model, start, s);
-  const std::vector<Jet> target = s->driver_values;
-  const int substeps = ContinuationSteps(model, target);
+  const std::vector<Jet> at_start = s->driver_values;
+  std::vector<double> from, to;
+  for (size_t d = 0; d < model.drivers.size(); ++d) {
+    from.push_back(DesignDriverValue(model, model.drivers[d]));
+    to.push_back(at_start[d].c[0]);
+  }
+  to = ContinuationTargets(model, from, to);
+  const double steps = ContinuationSteps(model, from, to);
+  if (steps > kMaxContinuationSteps) {
+    *message = "the drivers' values at t = start are too far from the design pose to follow (" +
+               std::to_string(static_cast<long long>(std::min(steps, 1e15))) +
+               " increments): start the analysis nearer the design pose, or draw the design pose nearer the start";
+    return false;
+  }
+  const int substeps = static_cast<int>(steps);
   SolveOptions o = solve;
   o.max_iterations = 50;
-  for (int k = 1; k <= substeps; ++k) {
-    const double lambda = static_cast<double>(k) / substeps;
-    for (size_t d = 0; d < model.drivers.size(); ++d) {
-      const double v0 = DesignDriverValue(model, model.drivers[d]);
-      s->driver_values[d] = Jet::Constant(v0 + lambda * (target[d].c[0] - v0));
-    }
+  for (int k = 1; k <= substeps + 1; ++k) {
+    // The last pass sets the drivers' true values (multi-turn angles included).
+    const double lambda = std::min(1.0, static_cast<double>(k) / substeps);
+    for (size_t d = 0; d < model.drivers.size(); ++d)
+      s->driver_values[d] = k > substeps ? at_start[d] : Jet::Constant(from[d] + lambda * (to[d] - from[d]));
     AimRotationDrivers(sys, s);
     const SolveSummary r = ws.newton().Solve(o, s);
     *iterations += r.iterations;

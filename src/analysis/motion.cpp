@@ -128,7 +128,30 @@ std::vector<int> MotionLayout::NeededBodies(const Model& model) const {
 }
 
 RowEvaluator::RowEvaluator(const Model& model, const MotionLayout& layout)
-    : model_(model), layout_(layout), angle_ref_(model.outputs.size(), 0.0) {}
+    : model_(model),
+      layout_(layout),
+      angle_ref_(model.outputs.size(), 0.0),
+      angle_rate_(model.outputs.size(), 0.0),
+      angle_driver_(model.outputs.size(), -1) {
+  for (size_t o = 0; o < model.outputs.size(); ++o)
+    for (size_t d = 0; d < model.drivers.size(); ++d)
+      if (model.outputs[o].kind == OutputKind::JointCoordinate && model.drivers[d].kind == DriverKind::JointRotation &&
+          model.drivers[d].joint == model.outputs[o].joint)
+        angle_driver_[o] = static_cast<int>(d);
+}
+
+// A joint angle continuous from the design pose over any number of turns
+// (format: "never wrapped"). The turn is chosen nearest a reference: for a
+// driven joint the driver's own value, so the column equals the driver to
+// round-off; otherwise the previous row's angle advanced by its angular velocity
+// over the step, so steps of more than half a turn are followed too.
+double RowEvaluator::JointAngle(const SystemState& s, int o, double raw_sin, double raw_cos) {
+  double ref = angle_ref_[o];
+  if (angle_driver_[o] >= 0) ref = s.driver_values[angle_driver_[o]].c[0];
+  else if (!first_row_ && layout_.options().order >= 1) ref += angle_rate_[o] * (s.t - last_t_);
+  angle_ref_[o] = UnwrapAngle(raw_sin, raw_cos, ref);
+  return angle_ref_[o];
+}
 
 void RowEvaluator::Evaluate(const SystemState& s, const StepDiagnostics& d, double* row) {
   const int order = layout_.options().order;
@@ -140,6 +163,8 @@ void RowEvaluator::Evaluate(const SystemState& s, const StepDiagnostics& d, doub
   *out++ = d.residual;
   *out++ = d.condition;
   for (int k = 0; k <= order; ++k) *out++ = d.error_bound[k];
+  last_t_ = s.t;
+  first_row_ = false;
 }
 
 double* RowEvaluator::BodyValues(const BodyKinematics& b, double* out) const {
@@ -184,10 +209,10 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
     // θ = atan2(g_iᵀf_j, f_iᵀf_j), continuous from the design pose;
     // θ^(k) = h'_jᵀω_j'^(k−1) − h'_iᵀω_i'^(k−1) on the joint.
     const Vec3 fj = b2.A * jt.frame2.f;
-    const double th = UnwrapAngle((b1.A * jt.frame1.g).dot(fj), (b1.A * jt.frame1.f).dot(fj), angle_ref_[o]);
-    angle_ref_[o] = th;
+    const double th = JointAngle(s, o, (b1.A * jt.frame1.g).dot(fj), (b1.A * jt.frame1.f).dot(fj));
     *out++ = th * ang;
     for (int k = 1; k <= order; ++k) *out++ = (jt.frame2.h.dot(b2.w[k - 1]) - jt.frame1.h.dot(b1.w[k - 1])) * ang;
+    if (order >= 1) angle_rate_[o] = jt.frame2.h.dot(b2.w[0]) - jt.frame1.h.dot(b1.w[0]);
   }
   if (jt.type != JointType::Revolute) {
     // s = h_iᵀ(P_j − P_i), differentiated by the Leibniz rule on jets.

@@ -97,9 +97,15 @@ class RowEvaluator {
   double* BodyValues(const BodyKinematics& b, double* out) const;
   double* OutputValues(const SystemState& s, int o, double* out);
 
+  double JointAngle(const SystemState& s, int o, double raw_sin, double raw_cos);
+
   const Model& model_;
   const MotionLayout& layout_;
-  std::vector<double> angle_ref_;  // per output: the last joint angle, for continuity
+  std::vector<double> angle_ref_;    // per output: the last joint angle (SI), for continuity
+  std::vector<double> angle_rate_;   // per output: its last angular velocity (SI)
+  std::vector<int> angle_driver_;    // per output: the rotation driver of its joint, or −1
+  double last_t_ = 0;
+  bool first_row_ = true;
 };
 
 struct MotionStop {

@@ -1,6 +1,8 @@
 // mechkin command-line entry point. Exit codes: 0 success, 1 invalid input or a
 // failed expectation/run, 2 unusable arguments. Nothing escapes main.
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstring>
 #include <iostream>
 
 #include "cli/commands/bench_command.hpp"
@@ -24,10 +26,18 @@ int main(int argc, char** argv) {
       const int code = app.exit(e);  // prints help/version/error
       return code == 0 ? 0 : 2;      // CLI11 codes >= 100 become our "unusable arguments"
     }
-    if (app.got_subcommand("check")) return mechkin::RunCheck(check, std::cout, std::cerr);
-    if (app.got_subcommand("run")) return mechkin::RunRun(run, std::cout, std::cerr);
-    if (app.got_subcommand("bench")) return mechkin::RunBenchCommand(bench, std::cout, std::cerr);
-    return 2;
+    int code = 2;
+    if (app.got_subcommand("check")) code = mechkin::RunCheck(check, std::cout, std::cerr);
+    if (app.got_subcommand("run")) code = mechkin::RunRun(run, std::cout, std::cerr);
+    if (app.got_subcommand("bench")) code = mechkin::RunBenchCommand(bench, std::cout, std::cerr);
+    // A report that could not be written is a failure, not a success.
+    std::cout.flush();
+    if (!std::cout) {
+      if (code == 0)
+        std::cerr << "mechkin: writing to the standard output failed: " << std::strerror(errno ? errno : EIO) << "\n";
+      return code == 0 ? 1 : code;
+    }
+    return code;
   } catch (const std::exception& e) {
     std::cerr << "mechkin: internal error: " << e.what() << "\n";
     return 1;

@@ -1,5 +1,7 @@
 #include "io/output_file.hpp"
 
+#include "io/interrupt.hpp"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -92,6 +94,7 @@ bool OutputFile::Open(const std::string& path, const std::vector<std::string>& i
   fd_ = ::mkstemp(name.data());
   if (fd_ < 0) { *error = "cannot create a file next to '" + path + "': " + std::strerror(errno); return false; }
   tmp_path_ = name.data();
+  RegisterTemporaryFile(tmp_path_.c_str());
   ::fchmod(fd_, mode_);
   return true;
 }
@@ -188,6 +191,7 @@ bool OutputFile::Commit(const std::string& first_line, std::string* error) {
     Abort();
     return false;
   }
+  UnregisterTemporaryFile(tmp_path_.c_str());
   tmp_path_.clear();
   committed_ = true;
   return true;
@@ -196,7 +200,10 @@ bool OutputFile::Commit(const std::string& first_line, std::string* error) {
 void OutputFile::Abort() {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
-  if (!tmp_path_.empty()) ::unlink(tmp_path_.c_str());
+  if (!tmp_path_.empty()) {
+    ::unlink(tmp_path_.c_str());
+    UnregisterTemporaryFile(tmp_path_.c_str());
+  }
   tmp_path_.clear();
 }
 

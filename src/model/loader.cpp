@@ -13,6 +13,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <set>
 #include <sstream>
 
@@ -43,9 +44,13 @@ std::string EscapeToken(const std::string& key) {
   return out;
 }
 
+// The names of a list, at most 12 of them (a 10,000-body file must not turn
+// each misspelled reference into a megabyte of candidates).
 std::string Join(const std::vector<std::string>& v) {
+  constexpr size_t kShown = 12;
   std::string s;
-  for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + v[i];
+  for (size_t i = 0; i < v.size() && i < kShown; ++i) s += (i ? ", " : "") + v[i];
+  if (v.size() > kShown) s += ", … (" + std::to_string(v.size()) + " in all)";
   return s;
 }
 
@@ -211,7 +216,11 @@ class Reader {
         return std::nullopt;
       }
     }
-    if (nonzero && !(out.norm() > 0)) {
+    if (nonzero && (!std::isfinite(out.norm()) || out.cwiseAbs().maxCoeff() > 1e150)) {
+      Error(p, "'" + key + "' is too large to normalize", "give a direction with components of ordinary size");
+      return std::nullopt;
+    }
+    if (nonzero && !(out.norm() > 1e-150)) {
       Error(p, "'" + key + "' has zero length", "give a non-zero direction vector");
       return std::nullopt;
     }
@@ -374,7 +383,17 @@ std::optional<TimeFunction> ReadFunction(Reader& rd, const json& f, const std::s
     rd.Error(ptr, "'function' must be a string expression or {\"table\": [[t, v], ...]}, not " + TypeName(f));
     return std::nullopt;
   }
-  if (!rd.CheckObject(f, ptr, {"table"}, {"table"}, "a table function")) return std::nullopt;
+  if (!rd.CheckObject(f, ptr, {"table", "interpolation"}, {"table"}, "a table function")) return std::nullopt;
+  Interpolation how = Interpolation::Quintic;
+  if (auto s = rd.String(f, "interpolation", ptr)) {
+    if (*s == "linear") how = Interpolation::Linear;
+    else if (*s == "cubic") how = Interpolation::Cubic;
+    else if (*s != "quintic") {
+      rd.Error(ptr + "/interpolation", "unknown interpolation '" + Shorten(*s) + "'",
+               "use \"quintic\" (default, smooth to the snap), \"cubic\" or \"linear\"");
+      return std::nullopt;
+    }
+  }
   if (!f.contains("table")) return std::nullopt;
   const json& tab = f.at("table");
   if (!tab.is_array() || tab.size() < 2) {
@@ -401,7 +420,17 @@ std::optional<TimeFunction> ReadFunction(Reader& rd, const json& f, const std::s
     }
   }
   try {
-    return TimeFunction(std::make_shared<TableSpline>(ts, vs), scale);
+    auto spline = std::make_shared<TableSpline>(ts, vs, how);
+    int k = 0;
+    const double over = spline->MaxOvershoot(&k), range = spline->ValueRange();
+    if (range > 0 && over > 0.05 * range) {
+      std::ostringstream o;
+      o << "the smooth interpolation overshoots the data by " << over << " (" << std::lround(100 * over / range)
+        << " % of the table's range) between t = " << spline->knot(k) << " and " << spline->knot(k + 1) << " s";
+      rd.Warn(ptr + "/table/" + std::to_string(k), o.str(),
+              "add rows where the data turns sharply, or use \"interpolation\": \"linear\" (velocity then jumps at the rows)");
+    }
+    return TimeFunction(spline, scale);
   } catch (const std::exception& e) {
     rd.Error(ptr + "/table", e.what());
     return std::nullopt;
@@ -681,6 +710,11 @@ class SpecReader {
         rd_.Error(ptr + "/name", "output name '" + *name + "' is also a body name",
                   "table columns would clash; rename it");
         ok = false;
+      } else if (*name == "t" || *name == "newton_iterations" || *name == "residual" || *name == "condition" ||
+                 name->rfind("error_bound", 0) == 0) {
+        rd_.Error(ptr + "/name", "output name '" + *name + "' is the name of a built-in table column",
+                  "rename the output (t, newton_iterations, residual, condition and error_bound* are reserved)");
+        ok = false;
       }
       output_names_.insert(*name);
     }
@@ -748,6 +782,40 @@ class SpecReader {
     }
   }
 
+  // A point 1000× farther from the middle of the mechanism than its typical
+  // point (a typo such as 1e7 for 1e-3) silently inflates the characteristic
+  // length and so every tolerance: warn, naming the point. Valid files only, so
+  // model indices are the file's.
+  void WarnFarPoints() {
+    struct Place { Vec3 p; std::string ptr; };
+    std::vector<Place> pts;
+    for (size_t b = 0; b < model_.bodies.size(); ++b)
+      pts.push_back({model_.bodies[b].position, "/bodies/" + std::to_string(b) + "/position"});
+    for (size_t j = 0; j < model_.joints.size(); ++j) {
+      const Joint& jt = model_.joints[j];
+      auto [r, A] = Pose(jt.body1);
+      pts.push_back({r + A * jt.frame1.origin, "/joints/" + std::to_string(j) + (jt.type == JointType::Distance ? "/point1" : "/origin")});
+    }
+    if (pts.size() < 4) return;
+    Vec3 middle;
+    for (int a = 0; a < 3; ++a) {
+      std::vector<double> c;
+      for (const auto& q : pts) c.push_back(q.p[a]);
+      std::nth_element(c.begin(), c.begin() + c.size() / 2, c.end());
+      middle[a] = c[c.size() / 2];
+    }
+    std::vector<double> d;
+    for (const auto& q : pts) d.push_back((q.p - middle).norm());
+    std::vector<double> sorted = d;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double typical = sorted[sorted.size() / 2];
+    if (!(typical > 0)) return;
+    for (size_t k = 0; k < pts.size(); ++k)
+      if (d[k] > 1000 * typical)
+        rd_.Warn(pts[k].ptr, "this point is " + FormatTime(d[k] / typical) + " times farther from the middle of the mechanism than its typical point",
+                 "check the number and the unit: a far point sets the characteristic length and so every tolerance");
+  }
+
   // Every driver function over the analysis span, on the table's own grid (at most
   // 2001 points, both ends included): where it or one of its four derivatives is
   // undefined or not finite, `run` could not go on, so the file is refused here.
@@ -796,11 +864,22 @@ class SpecReader {
     o << t;
     return o.str();
   }
+  // A point in the file's length unit, in metres. Coordinates beyond 1e12 m
+  // (a typo, or values whose squares overflow) are refused.
   std::optional<Vec3> LengthVector(const json& o, const std::string& key, const std::string& ptr) {
     auto v = rd_.Vector(o, key, ptr, false);
-    if (v) *v *= length_;
+    if (!v) return v;
+    *v *= length_;
+    for (int k = 0; k < 3; ++k)
+      if (std::abs((*v)[k]) > kMaxCoordinate) {
+        rd_.Error(ptr + "/" + key + "/" + std::to_string(k),
+                  "coordinate " + FormatTime((*v)[k] / length_) + " " + model_.units.length_name + " is beyond 1e12 m",
+                  "check the number and the length unit (units/length)");
+        return std::nullopt;
+      }
     return v;
   }
+  static constexpr double kMaxCoordinate = 1e12;  // m
   std::optional<BodyIndex> BodyRef(const json& o, const std::string& key, const std::string& ptr) {
     auto b = rd_.BodyRef(o, key, ptr, body_index_);
     if (b && *b == -2) return std::nullopt;
@@ -859,10 +938,14 @@ class SpecReader {
       if (pitch && *pitch == 0) {
         rd_.Error(ptr + "/pitch", "screw pitch is zero", "use a revolute joint, or give the lead per revolution");
         ok = false;
-      } else if (pitch)
-        joint.pitch = *pitch * length_;
-      else
+      } else if (pitch && std::abs(*pitch * length_) > kMaxCoordinate) {
+        rd_.Error(ptr + "/pitch", "screw pitch is beyond 1e12 m per revolution", "check the number and the length unit");
         ok = false;
+      } else if (pitch) {
+        joint.pitch = *pitch * length_;
+      } else {
+        ok = false;
+      }
     }
     if (axis1 && axis2) {
       const double c = axis1->normalized().dot(axis2->normalized());
@@ -885,6 +968,10 @@ class SpecReader {
           ok = false;
         } else
           len = *l * length_;
+        if (len > kMaxCoordinate) {
+          rd_.Error(ptr + "/length", "distance length is beyond 1e12 m", "check the number and the length unit");
+          ok = false;
+        }
       }
       if (ok && !(len > 0)) {
         rd_.Error(ptr + "/point2", "distance joint points coincide at the design pose and no length is given",
@@ -1039,10 +1126,58 @@ class SpecReader {
 };
 
 // Parses the text as JSON; on failure reports where (line and column) and why.
+// Follows the parse to name duplicate keys by their JSON pointer (JSON allows
+// them; the last one silently wins, which is rarely what the author meant).
+class DuplicateKeyTracker {
+ public:
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: frames_.push_back({true}); break;
+      case json::parse_event_t::array_start: frames_.push_back({false}); break;
+      case json::parse_event_t::key: {
+        Frame& f = frames_.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second) duplicates_.push_back(Pointer());
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        NextElement();
+        break;
+      case json::parse_event_t::value: NextElement(); break;
+    }
+    return true;
+  }
+  const std::vector<std::string>& duplicates() const { return duplicates_; }
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string key;
+    size_t index = 0;
+  };
+  void NextElement() {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+  }
+  std::string Pointer() const {
+    std::string p;
+    for (const Frame& f : frames_) p += "/" + (f.object ? EscapeToken(f.key) : std::to_string(f.index));
+    return p;
+  }
+  std::vector<Frame> frames_;
+  std::vector<std::string> duplicates_;
+};
+
 bool ParseJson(const std::string& text, Reader& rd, json* doc_out) {
   json& doc = *doc_out;
   try {
-    doc = json::parse(text);
+    DuplicateKeyTracker tracker;
+    doc = json::parse(text, std::ref(tracker));
+    for (const auto& ptr : tracker.duplicates())
+      rd.Warn(ptr, "the key appears more than once in its object; the last value is used",
+              "remove the other occurrences");
   } catch (const json::parse_error& e) {
     // Convert the byte offset into line and column.
     size_t line = 1, col = 1;
@@ -1110,6 +1245,7 @@ LoadResult LoadMechanismText(const std::string& text, const std::string& source_
   if (!result.errors.empty()) return result;
   Model& model = spec.model();
   model.characteristic_length = CharacteristicLength(model);
+  spec.WarnFarPoints();
   spec.CheckDriverSpans();
   if (!result.errors.empty()) return result;
   result.model = std::move(model);

@@ -2,6 +2,7 @@
 // table. Both return exact derivatives to the 4th order as a Jet.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,19 +42,32 @@ class Expression {
   int root_ = -1;
 };
 
-/// Interpolating quintic spline through (t_k, v_k), C4 everywhere, with the
-/// "natural" end conditions v''' = v'''' = 0 (the minimiser of ∫(v''')²).
+/// How a table is interpolated: quintic (default: C4, natural ends v''' = v'''' = 0,
+/// the minimiser of the integral of (v''')^2), cubic (C2, natural ends v'' = 0) or
+/// linear (C0: the velocity jumps at the knots). Two rows are always joined linearly.
+enum class Interpolation { Quintic, Cubic, Linear };
+
+/// Interpolating spline through (t_k, v_k), one polynomial of degree <= 5 per interval.
 class TableSpline {
  public:
-  /// Requires ≥ 2 points with strictly increasing, finite t. Throws std::invalid_argument.
-  TableSpline(std::vector<double> t, std::vector<double> v);
+  /// Requires >= 2 points with strictly increasing, finite t. Throws std::invalid_argument.
+  TableSpline(std::vector<double> t, std::vector<double> v, Interpolation how = Interpolation::Quintic);
   /// Throws std::out_of_range outside [t_front, t_back].
   Jet Eval(double t) const;
   double t_min() const { return t_.front(); }
   double t_max() const { return t_.back(); }
+  /// The largest excursion of the interpolant beyond the values at the two ends
+  /// of an interval, and that interval's index (a staircase table rings).
+  double MaxOvershoot(int* interval) const;
+  double knot(int k) const { return t_[k]; }
+  double ValueRange() const;
 
  private:
-  std::vector<double> t_, v_, d_, m_;  // knots, values, first and second derivatives
+  void BuildQuintic();
+  void BuildCubic();
+  void BuildLinear();
+  std::vector<double> t_, v_;
+  std::vector<std::array<double, 6>> poly_;  // per interval, coefficients in (t - t_k)
 };
 
 /// A driver function: one of the two forms, scaled to SI by `scale`.

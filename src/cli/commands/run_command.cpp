@@ -12,6 +12,7 @@
 #include "model/loader.hpp"
 #include "analysis/motion.hpp"
 #include "io/async_sink.hpp"
+#include "io/interrupt.hpp"
 #include "io/table_writer.hpp"
 
 namespace mechkin {
@@ -27,7 +28,18 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
       ->check(CLI::IsMember({"omega", "p"}));
   cmd->add_option("--solver", o->solver, "Position solver (newton, ceres)")->check(CLI::IsMember({"newton", "ceres"}));
   cmd->add_option("--tol", o->tolerance, "Position tolerance relative to the mechanism size (default 1e-10)")
-      ->check(CLI::Range(1e-15, 1e-3));
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            // Written so that NaN fails too.
+            if (end == text.c_str() || *end != '\0' || !(v >= 1e-15 && v <= 1e-3))
+              return "--tol must be a number in [1e-15, 1e-3], not '" + text + "'";
+            return "";
+          },
+          "in [1e-15, 1e-3]"));
+  cmd->add_flag("--keep-partial", o->keep_partial,
+                "On Ctrl-C (SIGINT) write the rows computed so far as a partial table instead of nothing");
   cmd->add_flag("--si", o->si, "Write SI units (m, rad) instead of the file's units");
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_option("--bodies", o->bodies, "Bodies whose columns are written (comma-separated; none: '')")->delimiter(',');
@@ -142,6 +154,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
     err << "mechkin run: " << e.what() << "\n";
     return 2;
   }
+  InstallInterruptHandlers(o.keep_partial);
   // The destination first: a path that cannot be written fails before the analysis.
   OutputFile file;
   std::string why;
@@ -162,7 +175,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
     progress.Row();
     watch.Row(d);
     if (o.stats) steps.push_back(d);
-    return rows_out.Append(row.data(), layout->size());
+    return rows_out.Append(row.data(), layout->size()) && !InterruptRequested();
   });
   const bool rows_written = rows_out.Drain();
   progress.Clear();
@@ -171,14 +184,15 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   if (!rep.complete && rep.stop != StopKind::Interrupted) err << "mechkin run: " << o.file << ": " << rep.message << "\n";
   if (o.stats && !steps.empty()) PrintStats(rep, steps, err);
   if (rep.rows == 0) return 1;  // refused or failed before the first row: no table at all
-  std::string note = rep.complete ? "" : rep.message.substr(0, rep.message.find('\n'));
+  const bool interrupted = InterruptRequested();
+  std::string note = rep.complete ? "" : interrupted ? "interrupted (SIGINT)" : rep.message.substr(0, rep.message.find('\n'));
   if (!rep.complete && note.empty()) note = "the run stopped early";
   if (!writer.Finish(note, &why) || !rows_written) {
     if (why.empty()) why = "writing the table failed";
     err << "mechkin run: " << why << "\n";
     return 1;
   }
-  return rep.complete ? 0 : 1;
+  return rep.complete ? 0 : interrupted ? 130 : 1;
 }
 
 }  // namespace mechkin
