@@ -173,3 +173,20 @@ def test_to_pandas_names_and_missing_pandas_message(root, monkeypatch):
     monkeypatch.setitem(sys.modules, "pandas", None)
     with pytest.raises(ImportError, match="python3-pandas"):
         motion.to_pandas()
+
+
+def test_examples_run(root):
+    env = dict(os.environ)
+    study = subprocess.run([sys.executable, os.path.join(root, "python/examples/design_study.py")],
+                           capture_output=True, text=True, env=env)
+    assert study.returncode == 0, study.stderr
+    rows = [l.split() for l in study.stdout.splitlines()[1:]]
+    strokes = [float(r[1]) for r in rows]
+    # Stroke of an offset slider-crank: sqrt((b+a)^2 - e^2) - sqrt((b-a)^2 - e^2), a=40, e=10.
+    for rod, stroke in zip((60.0, 80.0, 120.0, 160.0, 240.0), strokes):
+        exact = np.sqrt((rod + 40) ** 2 - 100) - np.sqrt((rod - 40) ** 2 - 100)
+        assert abs(stroke - exact) < 0.05, (rod, stroke, exact)  # sampled every degree
+    gate = subprocess.run([sys.executable, os.path.join(root, "python/examples/ci_check.py")] + BUNDLED,
+                          capture_output=True, text=True, env=env)
+    assert gate.returncode == 0, gate.stdout
+    assert gate.stdout.strip().endswith("%d passed, 0 failed" % len(BUNDLED))

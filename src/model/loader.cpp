@@ -1132,8 +1132,8 @@ class DuplicateKeyTracker {
  public:
   bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
     switch (event) {
-      case json::parse_event_t::object_start: frames_.push_back({true}); break;
-      case json::parse_event_t::array_start: frames_.push_back({false}); break;
+      case json::parse_event_t::object_start: frames_.push_back(Frame{true, {}, {}, 0}); break;
+      case json::parse_event_t::array_start: frames_.push_back(Frame{false, {}, {}, 0}); break;
       case json::parse_event_t::key: {
         Frame& f = frames_.back();
         f.key = parsed.get<std::string>();
