@@ -119,14 +119,17 @@ class Model:
         return CheckReport(self._core.check())
 
     def run(self, order=3, tol=1e-10, solver="newton", formulation="omega", bodies=None, outputs=None,
-            si=False, start=None, end=None, steps=None):
+            si=False, start=None, end=None, steps=None, forces=None):
         """The driven kinematic analysis. Returns a Motion; a run that stops early
-        returns the rows computed with motion.complete False and motion.stop saying why."""
+        returns the rows computed with motion.complete False and motion.stop saying why.
+        forces: driver efforts, joint reactions and energies (default: when the
+        file has inertia or loads; needs order >= 2, rates with order >= 3)."""
         norm = lambda sel: None if sel is None else ([sel] if isinstance(sel, str) else list(sel))
         bodies, outputs = norm(bodies), norm(outputs)
         core = self._core.run(int(order), float(tol), solver, formulation, bodies, outputs, bool(si),
-                              start, end, steps)
-        return Motion(self, core, dict(order=int(order), si=bool(si), bodies=bodies, outputs=outputs))
+                              start, end, steps, forces)
+        return Motion(self, core, dict(order=int(order), si=bool(si), bodies=bodies, outputs=outputs,
+                                       forces=core.forces))
 
     def __reduce__(self):
         return (_compile, (self._core.text, self._core.source))
@@ -246,6 +249,30 @@ class Motion:
     def units(self):
         return {c["name"]: c["unit"] for c in self.columns}
 
+    @property
+    def indeterminate_reactions(self):
+        """With redundant equations: the reaction components statics cannot determine."""
+        return list(self._report.get("indeterminate_reactions", []))
+
+    def effort(self, driver, order=0):
+        """The torque (rotation) or force (translation, distance) the driver applies; order 1: its rate."""
+        return self[driver + ".effort" + ("_t" if order else "")]
+
+    def power(self, driver, order=0):
+        return self[driver + ".power" + ("_t" if order else "")]
+
+    def reaction(self, joint, frame="global", order=0):
+        """(force, moment) that body1 exerts on body2 at the joint origin, rows × 3 each:
+        frame "global" (x, y, z) or "joint" (body2's joint frame f, g, h; h is the axis)."""
+        q = ("joint_force", "joint_moment") if frame == "global" else ("joint_force_local", "joint_moment_local")
+        out = []
+        for quantity in q:
+            cols = [self._find(quantity, joint, a, order) for a in range(3)]
+            if None in cols:
+                raise KeyError("no %s reaction of %r in this motion (run with forces=True)" % (frame, joint))
+            out.append(self._strided(cols))
+        return tuple(out)
+
     def to_pandas(self):
         """A pandas DataFrame with the table's column names (units in df.attrs['units'])."""
         try:
@@ -274,7 +301,7 @@ class Motion:
 
 def _rebuild_motion(model, options, values, report):
     core = _mechkin.motion_from_state(model._core, options["order"], options["si"], options["bodies"],
-                                      options["outputs"], values, report["complete"], report["stop"],
+                                      options["outputs"], options.get("forces", False), values, report["complete"], report["stop"],
                                       report["message"])
     m = Motion(model, core, options)
     m._report = dict(report)

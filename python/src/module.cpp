@@ -93,6 +93,15 @@ const char* QuantityName(Quantity q) {
     case Quantity::Distance: return "distance";
     case Quantity::JointAngle: return "joint_angle";
     case Quantity::JointSlide: return "joint_slide";
+    case Quantity::DriverEffort: return "driver_effort";
+    case Quantity::DriverPower: return "driver_power";
+    case Quantity::JointForce: return "joint_force";
+    case Quantity::JointMoment: return "joint_moment";
+    case Quantity::JointForceLocal: return "joint_force_local";
+    case Quantity::JointMomentLocal: return "joint_moment_local";
+    case Quantity::KineticEnergy: return "kinetic_energy";
+    case Quantity::PotentialEnergy: return "potential_energy";
+    case Quantity::EnergyBalance: return "energy_balance";
     case Quantity::NewtonIterations: return "newton_iterations";
     case Quantity::Residual: return "residual";
     case Quantity::Condition: return "condition";
@@ -127,8 +136,9 @@ struct PyMotion {
 };
 
 TableOptions MakeTableOptions(int order, bool si, const std::optional<std::vector<std::string>>& bodies,
-                              const std::optional<std::vector<std::string>>& outputs) {
+                              const std::optional<std::vector<std::string>>& outputs, bool forces) {
   TableOptions t;
+  t.forces = forces;
   t.order = order;
   t.si = si;
   t.all_bodies = !bodies.has_value();
@@ -141,7 +151,8 @@ TableOptions MakeTableOptions(int order, bool si, const std::optional<std::vecto
 std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, int order, double tol, const std::string& solver,
                                    const std::string& formulation, const std::optional<std::vector<std::string>>& bodies,
                                    const std::optional<std::vector<std::string>>& outputs, bool si,
-                                   std::optional<double> start, std::optional<double> end, std::optional<int> steps) {
+                                   std::optional<double> start, std::optional<double> end, std::optional<int> steps,
+                                   std::optional<bool> forces) {
   auto model = m.model;
   if (start || end || steps) {
     auto copy = std::make_shared<Model>(*m.model);
@@ -163,7 +174,8 @@ std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, int order, double tol, 
   o.keep_step_diagnostics = false;  // the table's diagnostic columns carry them
   std::string why;
   if (!o.IsValid(&why)) throw py::value_error(why);
-  const TableOptions table = MakeTableOptions(order, si, bodies, outputs);
+  const TableOptions table = MakeTableOptions(order, si, bodies, outputs, forces.value_or(model->HasForces()));
+  if (table.forces && order < 2) throw py::value_error("forces need order >= 2 (order 3 gives their rates too)");
   auto out = std::make_shared<PyMotion>();
   out->model = model;
   try {
@@ -180,12 +192,12 @@ std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, int order, double tol, 
 
 std::shared_ptr<PyMotion> MotionFromState(const LoadedModel& m, int order, bool si,
                                           const std::optional<std::vector<std::string>>& bodies,
-                                          const std::optional<std::vector<std::string>>& outputs,
+                                          const std::optional<std::vector<std::string>>& outputs, bool forces,
                                           py::array_t<double, py::array::c_style | py::array::forcecast> values,
                                           bool complete, const std::string& stop, const std::string& message) {
   auto out = std::make_shared<PyMotion>();
   out->model = m.model;
-  out->motion = std::make_unique<Motion>(MotionLayout(*m.model, MakeTableOptions(order, si, bodies, outputs)));
+  out->motion = std::make_unique<Motion>(MotionLayout(*m.model, MakeTableOptions(order, si, bodies, outputs, forces)));
   if (values.ndim() != 2 || values.shape(1) != out->motion->cols()) throw py::value_error("values do not fit the layout");
   out->motion->mutable_values().assign(values.data(), values.data() + values.size());
   out->motion->complete = complete;
@@ -226,6 +238,7 @@ py::dict Report(const PyMotion& pm) {
     d["singular"] = py::none();
   }
   d["set_aside"] = m.report.set_aside;
+  d["indeterminate_reactions"] = m.report.indeterminate_reactions;
   d["assembly_iterations"] = m.report.assembly_iterations;
   d["blocks"] = m.report.blocks;
   d["blocks_solved"] = m.report.blocks_solved;
@@ -289,14 +302,16 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def("info", &ModelInfo)
       .def("check", &CheckModel)
       .def("run", &RunModel, py::arg("order"), py::arg("tol"), py::arg("solver"), py::arg("formulation"),
-           py::arg("bodies"), py::arg("outputs"), py::arg("si"), py::arg("start"), py::arg("end"), py::arg("steps"));
+           py::arg("bodies"), py::arg("outputs"), py::arg("si"), py::arg("start"), py::arg("end"), py::arg("steps"),
+           py::arg("forces"));
   py::class_<PyMotion, std::shared_ptr<PyMotion>>(mod, "CoreMotion")
       .def_property_readonly("values", &Values)
       .def("columns", &Columns)
       .def("report", &Report)
       .def("write", &ToTable, py::arg("path"), py::arg("format") = "csv")
       .def_property_readonly("order", [](const PyMotion& m) { return m.motion->layout().options().order; })
-      .def_property_readonly("si", [](const PyMotion& m) { return m.motion->layout().options().si; });
+      .def_property_readonly("si", [](const PyMotion& m) { return m.motion->layout().options().si; })
+      .def_property_readonly("forces", [](const PyMotion& m) { return m.motion->layout().options().forces; });
   mod.def("compile", &Compile, py::arg("text"), py::arg("source"));
   mod.def("motion_from_state", &MotionFromState);
 }

@@ -190,3 +190,28 @@ def test_examples_run(root):
                           capture_output=True, text=True, env=env)
     assert gate.returncode == 0, gate.stdout
     assert gate.stdout.strip().endswith("%d passed, 0 failed" % len(BUNDLED))
+
+
+def test_forces_views_and_cli(cli, tmp_path, root):
+    doc = json.load(open(os.path.join(root, "mechanisms/spatial-slider-crank.json")))
+    for b, mass in zip(doc["bodies"], (1.0, 2.0, 3.0)):
+        b["inertia"] = {"mass": mass, "center": b["position"], "moments": [[0.01, 0, 0], [0, 0.02, 0], [0, 0, 0.03]]}
+    doc["gravity"] = [0, -9.81, 0]
+    path = tmp_path / "sc-forces.json"
+    path.write_text(json.dumps(doc))
+    motion = mechkin.load(str(path)).run()
+    assert motion["motor.effort"].shape == (361,)
+    np.testing.assert_array_equal(motion.effort("motor"), motion["motor.effort"])
+    np.testing.assert_array_equal(motion.effort("motor", 1), motion["motor.effort_t"])
+    force, moment = motion.reaction("pin")
+    np.testing.assert_array_equal(force[:, 1], motion["pin.fy"])
+    np.testing.assert_array_equal(moment[:, 2], motion["pin.mz"])
+    assert np.shares_memory(force, motion.values)
+    _, joint_moment = motion.reaction("bearing", frame="joint")
+    assert np.abs(joint_moment[:, 2]).max() < 1e-9 * np.abs(motion.effort("motor")).max()  # revolute: no axial moment
+    assert np.abs(motion["energy_balance"]).max() < 1e-10 * np.abs(motion.power("motor")).max()
+    _, _, header, values = cli_table(cli, str(path), tmp_path)
+    np.testing.assert_array_equal(values, motion.values)
+    again = pickle.loads(pickle.dumps(motion))
+    np.testing.assert_array_equal(again.effort("motor"), motion.effort("motor"))
+    assert mechkin.load(str(path)).run(forces=False).values.shape[1] < motion.values.shape[1]

@@ -15,6 +15,7 @@ bool AnalysisOptions::IsValid(std::string* error) const {
   if (!(tolerance > 0 && tolerance < 1e-2)) { *error = "tolerance must be in (0, 1e-2)"; return false; }
   if (max_iterations < 1) { *error = "max_iterations must be >= 1"; return false; }
   if (predictor_order < 0 || predictor_order > 3) { *error = "predictor order must be 0..3"; return false; }
+  if (forces && order < 2) { *error = "forces need accelerations: use order 2 or more (--order 3 gives their rates too)"; return false; }
   return true;
 }
 
@@ -56,6 +57,7 @@ class Stepper {
   Stepper(KinematicsWorkspace& ws, const AnalysisOptions& options, const RowSelection& selection, SystemState start)
       : ws_(ws), model_(ws.system().model()), options_(options), selection_(selection), s_(std::move(start)),
         prev_(s_), predicted_(s_), good_(s_) {
+    if (options.forces) forces_ = std::make_unique<ForceSolver>(ws.system(), selection, options.order);
     solve_.tolerance = options.tolerance;
     solve_.max_iterations = options.max_iterations;
     predictor_ = std::min(options.predictor_order, options.order);
@@ -80,6 +82,8 @@ class Stepper {
   double prev_sign_ = 0;
   bool have_sign_ = false;
   Eigen::VectorXd phi_;
+  std::unique_ptr<ForceSolver> forces_;
+  ForceResults force_results_;
 };
 
 // One attempt from the accepted state to time t (predictor over dt).
@@ -164,6 +168,11 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       return;
     }
     FinishDiagnostics(&diag);
+    if (forces_) {
+      forces_->Solve(ws_, s_, &force_results_);
+      diag.forces = &force_results_;
+      rep->indeterminate_reactions = forces_->indeterminate();
+    }
     diag.solve_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     UpdateAngleReferences(ws_.system(), &s_);
     if (options_.keep_step_diagnostics) rep->steps.push_back(diag);
@@ -184,7 +193,7 @@ WorkspaceOptions WorkspaceOptionsOf(const AnalysisOptions& o) {
   w.solver = o.solver;
   w.ceres_normalization_residual = o.ceres_normalization_residual;
   w.order = o.order;
-  w.needed_bodies = o.needed_bodies;
+  if (!o.forces) w.needed_bodies = o.needed_bodies;  // forces need the whole system
   return w;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/forces.hpp"
 #include "analysis/singularity.hpp"
 #include "kinematics/workspace.hpp"
 
@@ -29,6 +30,9 @@ struct AnalysisOptions {
   std::vector<int> needed_bodies;
   // Keep every row's StepDiagnostics in the report (the CLI streams and keeps none).
   bool keep_step_diagnostics = true;
+  // Inverse dynamics along the motion (driver efforts, joint reactions, energy):
+  // needs order ≥ 2; rates with order ≥ 3.
+  bool forces = false;
   bool IsValid(std::string* error) const;
 };
 
@@ -41,6 +45,7 @@ struct StepDiagnostics {
   // Relative error bounds per derivative order (0 = position), analysis/error_bounds.hpp.
   double error_bound[kMaxOrder + 1] = {0, 0, 0, 0, 0};
   double solve_seconds = 0;        // position + derivative solves of this step
+  const ForceResults* forces = nullptr;  // when AnalysisOptions::forces
   int substeps_refinements = 0;    // 1 when the step had to be refined into sub-steps
 };
 
@@ -53,6 +58,7 @@ struct AnalysisReport {
   std::optional<SingularPosition> singular;
   std::string message;                    // failure explanation (empty on success)
   std::vector<std::string> set_aside;     // redundant equations, by name
+  std::vector<std::string> indeterminate_reactions;  // with forces and redundant equations
   std::vector<StepDiagnostics> steps;     // every row's, when options.keep_step_diagnostics
   int rows = 0;                           // rows delivered to the callback
   int assembly_iterations = 0;

@@ -48,6 +48,7 @@ MotionLayout::MotionLayout(const Model& model, const TableOptions& options) : op
   for (const auto& sel : options.outputs)
     if (!options.all_outputs && std::none_of(model.outputs.begin(), model.outputs.end(), [&](const Output& o) { return o.name == sel; }))
       throw std::invalid_argument("--outputs: no output named '" + sel + "'");
+  if (options.forces) AddForces(model);
   columns_.push_back({"newton_iterations", "", "", Quantity::NewtonIterations});
   columns_.push_back({"residual", "", "", Quantity::Residual});
   columns_.push_back({"condition", "", "", Quantity::Condition});
@@ -97,6 +98,39 @@ void MotionLayout::AddOutput(const Model& model, int o) {
       AddSeries(Quantity::JointSlide, out.name, o, out.name + ".slide", -1, L, 0);
     }
   }
+}
+
+// A force quantity and, with order ≥ 3, its rate ("_t").
+void MotionLayout::AddRated(Quantity q, const std::string& subject, int index, const std::string& name, int component,
+                            const std::string& unit) {
+  columns_.push_back({name, unit, subject, q, index, component, 0});
+  if (options_.order >= 3) columns_.push_back({name + "_t", unit + "/s", subject, q, index, component, 1});
+}
+
+// Forces, in the file's units (force = mass × length / s², torque = force × length) or SI.
+void MotionLayout::AddForces(const Model& model) {
+  Units u = model.units;
+  if (options_.si) u.mass_name = "kg", u.length_name = "m";
+  static const char* kGlobal[] = {"x", "y", "z"};
+  static const char* kFrame[] = {"f", "g", "h"};
+  for (size_t d = 0; d < model.drivers.size(); ++d) {
+    const Driver& drv = model.drivers[d];
+    const bool torque = drv.kind == DriverKind::JointRotation || drv.kind == DriverKind::BodyRotation;
+    AddRated(Quantity::DriverEffort, drv.name, static_cast<int>(d), drv.name + ".effort", -1,
+             torque ? u.TorqueName() : u.ForceName());
+    AddRated(Quantity::DriverPower, drv.name, static_cast<int>(d), drv.name + ".power", -1, u.PowerName());
+  }
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    const std::string& nm = model.joints[j].name;
+    const int idx = static_cast<int>(j);
+    for (int a = 0; a < 3; ++a) AddRated(Quantity::JointForce, nm, idx, nm + ".f" + kGlobal[a], a, u.ForceName());
+    for (int a = 0; a < 3; ++a) AddRated(Quantity::JointMoment, nm, idx, nm + ".m" + kGlobal[a], a, u.TorqueName());
+    for (int a = 0; a < 3; ++a) AddRated(Quantity::JointForceLocal, nm, idx, nm + ".f" + kFrame[a], a, u.ForceName());
+    for (int a = 0; a < 3; ++a) AddRated(Quantity::JointMomentLocal, nm, idx, nm + ".m" + kFrame[a], a, u.TorqueName());
+  }
+  columns_.push_back({"kinetic_energy", u.EnergyName(), "", Quantity::KineticEnergy});
+  columns_.push_back({"potential_energy", u.EnergyName(), "", Quantity::PotentialEnergy});
+  columns_.push_back({"energy_balance", u.PowerName(), "", Quantity::EnergyBalance});
 }
 
 int MotionLayout::Find(const std::string& name) const {
@@ -159,6 +193,7 @@ void RowEvaluator::Evaluate(const SystemState& s, const StepDiagnostics& d, doub
   *out++ = d.t;
   for (const auto& it : layout_.items())
     out = it.is_body ? BodyValues(s.bodies[it.index], out) : OutputValues(s, it.index, out);
+  if (layout_.options().forces) out = ForceValues(d.forces, out);
   *out++ = d.iterations;
   *out++ = d.residual;
   *out++ = d.condition;
@@ -228,6 +263,37 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
   return out;
 }
 
+// The force columns in layout order, converted from SI to the table's units.
+double* RowEvaluator::ForceValues(const ForceResults* f, double* out) const {
+  const Units& u = model_.units;
+  const bool si = layout_.options().si, rates = layout_.options().order >= 3;
+  const double F = si ? 1 : 1 / u.force_to_si(), M = si ? 1 : 1 / u.torque_to_si();
+  const size_t nd = model_.drivers.size(), nj = model_.joints.size();
+  auto put = [&](double v, double v1, double scale) {
+    *out++ = f ? v * scale : 0;
+    if (rates) *out++ = f ? v1 * scale : 0;
+  };
+  for (size_t d = 0; d < nd; ++d) {
+    const bool torque = model_.drivers[d].kind == DriverKind::JointRotation || model_.drivers[d].kind == DriverKind::BodyRotation;
+    put(f ? f->effort[d] : 0, f ? f->effort_rate[d] : 0, torque ? M : F);
+    put(f ? f->power[d] : 0, f ? f->power_rate[d] : 0, M);  // power: torque unit / s
+  }
+  for (size_t j = 0; j < nj; ++j) {
+    const Vec3 zero = Vec3::Zero();
+    const std::array<std::pair<const Vec3*, const Vec3*>, 4> groups = {
+        std::make_pair(f ? &f->force[j] : &zero, f ? &f->force_rate[j] : &zero),
+        std::make_pair(f ? &f->moment[j] : &zero, f ? &f->moment_rate[j] : &zero),
+        std::make_pair(f ? &f->force_joint[j] : &zero, f ? &f->force_joint_rate[j] : &zero),
+        std::make_pair(f ? &f->moment_joint[j] : &zero, f ? &f->moment_joint_rate[j] : &zero)};
+    for (int g = 0; g < 4; ++g)
+      for (int a = 0; a < 3; ++a) put((*groups[g].first)[a], (*groups[g].second)[a], g % 2 == 0 ? F : M);
+  }
+  *out++ = f ? f->kinetic * M : 0;
+  *out++ = f ? f->potential * M : 0;
+  *out++ = f ? f->balance * M : 0;
+  return out;
+}
+
 std::vector<double> Motion::Column(int col) const {
   std::vector<double> c(rows());
   for (int r = 0; r < rows(); ++r) c[r] = at(r, col);
@@ -261,6 +327,7 @@ Motion RunMotion(const Model& model, const AnalysisOptions& options, const Table
   Motion motion{MotionLayout(model, table)};
   AnalysisOptions o = options;
   o.order = table.order;
+  o.forces = table.forces;
   if (!table.all_bodies || !table.all_outputs) {
     o.needed_bodies = motion.layout().NeededBodies(model);
     if (o.needed_bodies.empty()) o.needed_bodies.push_back(-1);  // nothing requested: solve no block

@@ -26,6 +26,15 @@ enum class Quantity {
   Distance,           // output distance
   JointAngle,         // revolute angle / cylindrical & screw ".angle"
   JointSlide,         // prismatic slide / cylindrical & screw ".slide"
+  DriverEffort,       // torque or force a driver applies (".effort"), order 0..1
+  DriverPower,        // ".power"
+  JointForce,         // reaction force on body2 by body1, global x/y/z (".fx")
+  JointMoment,        // reaction moment about the joint origin, global (".mx")
+  JointForceLocal,    // the force in body2's joint frame f/g/h (".ff")
+  JointMomentLocal,   // the moment in body2's joint frame (".mf")
+  KineticEnergy,
+  PotentialEnergy,
+  EnergyBalance,      // Σ driver + load power − d(kinetic + potential)/dt: round-off
   NewtonIterations,
   Residual,
   Condition,
@@ -51,6 +60,7 @@ struct TableOptions {
   bool si = false;
   bool all_bodies = true, all_outputs = true;
   std::vector<std::string> bodies, outputs;  // selections when not all
+  bool forces = false;  // driver efforts, joint reactions, energies (after the outputs)
 };
 
 class MotionLayout {
@@ -76,6 +86,9 @@ class MotionLayout {
  private:
   void AddBody(const Model& model, int b);
   void AddOutput(const Model& model, int o);
+  void AddForces(const Model& model);
+  void AddRated(Quantity q, const std::string& subject, int index, const std::string& name, int component,
+                const std::string& unit);
   void AddSeries(Quantity q, const std::string& subject, int index, const std::string& name, int component,
                  const std::string& unit, int first_order);
 
@@ -96,6 +109,7 @@ class RowEvaluator {
  private:
   double* BodyValues(const BodyKinematics& b, double* out) const;
   double* OutputValues(const SystemState& s, int o, double* out);
+  double* ForceValues(const ForceResults* f, double* out) const;
 
   double JointAngle(const SystemState& s, int o, double raw_sin, double raw_cos);
 

@@ -1,5 +1,6 @@
 #include "model/loader.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <fcntl.h>
 #include <poll.h>
@@ -196,8 +197,11 @@ class Reader {
 
   std::optional<Vec3> Vector(const json& obj, const std::string& key, const std::string& ptr, bool nonzero) {
     if (!obj.contains(key)) return std::nullopt;
-    const json& v = obj.at(key);
-    const std::string p = ptr + "/" + key;
+    return VectorValue(obj.at(key), ptr + "/" + key, key, nonzero);
+  }
+
+  // A 3-vector value at pointer p (`key` names it in messages).
+  std::optional<Vec3> VectorValue(const json& v, const std::string& p, const std::string& key, bool nonzero) {
     if (!v.is_array() || v.size() != 3) {
       Error(p, "'" + key + "' must be an array of 3 numbers [x, y, z], not " +
                    (v.is_array() ? "an array of " + std::to_string(v.size()) : TypeName(v)));
@@ -456,7 +460,8 @@ class SpecReader {
   bool ReadHeader(const json& doc) {
     if (!rd_.CheckObject(
             doc, "",
-            {"mechkin", "name", "description", "units", "bodies", "joints", "drivers", "analysis", "outputs", "expect"},
+            {"mechkin", "name", "description", "units", "bodies", "joints", "drivers", "analysis", "outputs", "expect",
+             "gravity", "loads"},
             {"mechkin", "bodies", "joints"}, "the mechanism file"))
       return false;
     if (auto v = rd_.Integer(doc, "mechkin", ""); v && *v != 1)
@@ -470,7 +475,17 @@ class SpecReader {
   void ReadUnits(const json& doc) {
     if (doc.contains("units")) {
       const json& u = doc.at("units");
-      if (rd_.CheckObject(u, "/units", {"length", "angle"}, {}, "'units'")) {
+      if (rd_.CheckObject(u, "/units", {"length", "angle", "mass"}, {}, "'units'")) {
+        if (auto s = rd_.String(u, "mass", "/units")) {
+          if (auto f = MassUnitToSi(*s)) {
+            model_.units.mass_name = *s;
+            model_.units.mass_to_si = *f;
+          } else {
+            const std::string g = DidYouMean(*s, MassUnitNames());
+            rd_.Error("/units/mass", "unknown mass unit '" + Shorten(*s) + "'",
+                      (g.empty() ? "" : "did you mean '" + g + "'? ") + "use one of " + Join(MassUnitNames()));
+          }
+        }
         if (auto s = rd_.String(u, "length", "/units")) {
           if (auto f = LengthUnitToSi(*s)) {
             model_.units.length_name = *s;
@@ -510,7 +525,8 @@ class SpecReader {
   }
 
   void ReadBody(const json& b, const std::string& ptr) {
-    if (!rd_.CheckObject(b, ptr, {"name", "description", "position", "orientation"}, {"name", "position"}, "a body"))
+    if (!rd_.CheckObject(b, ptr, {"name", "description", "position", "orientation", "inertia"}, {"name", "position"},
+                         "a body"))
       return;
     Body body;
     auto name = rd_.Name(b, ptr, "body");
@@ -538,6 +554,13 @@ class SpecReader {
     }
     body.name = *name;
     body.position = *pos;
+    if (b.contains("inertia")) {
+      body.inertia = ReadInertia(b, ptr, *pos, body.euler);
+      if (!body.inertia) {
+        body_index_.emplace(*name, -2);
+        return;
+      }
+    }
     body_index_[body.name] = static_cast<BodyIndex>(model_.bodies.size());
     model_.bodies.push_back(body);
   }
@@ -780,6 +803,185 @@ class SpecReader {
         }
       }
     }
+  }
+
+  // "inertia": {"mass", "center" (global design coordinates), and "moments"
+  // (3×3 about the centre, global design axes) or "principal" + "axes"}.
+  // Stored in body coordinates: s'_c = Aᵀ(c − r), J' = Aᵀ J A.
+  std::optional<Inertia> ReadInertia(const json& b, const std::string& body_ptr, const Vec3& r, const Vec4& euler) {
+    const std::string ptr = body_ptr + "/inertia";
+    const json& in = b.at("inertia");
+    if (!rd_.CheckObject(in, ptr, {"mass", "center", "moments", "principal", "axes"}, {"mass", "center"}, "'inertia'"))
+      return std::nullopt;
+    Inertia out;
+    auto mass = rd_.Number(in, "mass", ptr);
+    auto center = LengthVector(in, "center", ptr);
+    if (mass && !(*mass > 0)) rd_.Error(ptr + "/mass", "mass must be positive", "give the body's mass in units/mass");
+    if (!mass || !(*mass > 0) || !center) return std::nullopt;
+    const Mat3 A = CalcA(euler);
+    out.mass = *mass * model_.units.mass_to_si;
+    out.center = A.transpose() * (*center - r);
+    const double scale = model_.units.mass_to_si * length_ * length_;
+    std::optional<Mat3> J;
+    if (in.contains("moments") == (in.contains("principal") || in.contains("axes"))) {
+      rd_.Error(ptr, "give either 'moments' or 'principal' with 'axes'",
+                "moments: [[Ixx,Ixy,Ixz],[Ixy,Iyy,Iyz],[Ixz,Iyz,Izz]] about the centre, in global design axes");
+      return std::nullopt;
+    }
+    J = in.contains("moments") ? ReadMatrix(in, "moments", ptr) : ReadPrincipal(in, ptr);
+    if (!J) return std::nullopt;
+    *J *= scale;
+    if (!CheckInertiaTensor(*J, ptr)) return std::nullopt;
+    out.moments = A.transpose() * *J * A;
+    return out;
+  }
+
+  std::optional<Mat3> ReadMatrix(const json& o, const std::string& key, const std::string& ptr) {
+    const json& m = o.at(key);
+    if (!m.is_array() || m.size() != 3) {
+      rd_.Error(ptr + "/" + key, "'" + key + "' must be 3 rows of 3 numbers");
+      return std::nullopt;
+    }
+    Mat3 out;
+    for (int i = 0; i < 3; ++i) {
+      auto row = rd_.VectorValue(m[i], ptr + "/" + key + "/" + std::to_string(i), "row", false);
+      if (!row) return std::nullopt;
+      out.row(i) = row->transpose();
+    }
+    return out;
+  }
+
+  std::optional<Mat3> ReadPrincipal(const json& in, const std::string& ptr) {
+    auto p = rd_.Vector(in, "principal", ptr, false);
+    if (!in.contains("axes")) rd_.Error(ptr + "/axes", "'principal' needs 'axes'", "give the 3 principal axes (rows)");
+    if (!p || !in.contains("axes")) return std::nullopt;
+    auto axes = ReadMatrix(in, "axes", ptr);
+    if (!axes) return std::nullopt;
+    Mat3 U;
+    for (int k = 0; k < 3; ++k) U.col(k) = axes->row(k).transpose().normalized();
+    if ((U.transpose() * U - Mat3::Identity()).norm() > 1e-6) {
+      rd_.Error(ptr + "/axes", "principal axes are not perpendicular", "give three perpendicular axes");
+      return std::nullopt;
+    }
+    return U * p->asDiagonal() * U.transpose();
+  }
+
+  bool CheckInertiaTensor(const Mat3& J, const std::string& ptr) {
+    const double size = J.cwiseAbs().maxCoeff();
+    if ((J - J.transpose()).cwiseAbs().maxCoeff() > 1e-9 * size) {
+      rd_.Error(ptr + "/moments", "the inertia tensor is not symmetric", "Ixy must equal Iyx, and so on");
+      return false;
+    }
+    const Eigen::SelfAdjointEigenSolver<Mat3> eig(J);
+    const Vec3 I = eig.eigenvalues();
+    if (I.minCoeff() < -1e-12 * size || I[0] + I[1] < I[2] * (1 - 1e-9)) {
+      rd_.Error(ptr, "the inertia tensor is not physical (principal moments " + FormatTime(I[0]) + ", " +
+                         FormatTime(I[1]) + ", " + FormatTime(I[2]) + " must be ≥ 0 and obey I1 + I2 ≥ I3)",
+                "check the moments and their units (mass × length², about the centre of mass)");
+      return false;
+    }
+    return true;
+  }
+
+  // "gravity": [gx, gy, gz] in length/s².
+  void ReadGravity(const json& doc) {
+    if (!doc.contains("gravity")) return;
+    if (auto g = rd_.Vector(doc, "gravity", "", false)) model_.gravity = *g * length_;
+  }
+
+  // A force or torque component: a number, or an expression of t (same grammar as drivers).
+  std::optional<TimeFunction> Component(const json& v, const std::string& ptr, double scale) {
+    if (v.is_number()) return ReadFunction(rd_, json(v.dump()), ptr, scale);
+    return ReadFunction(rd_, v, ptr, scale);
+  }
+
+  void ReadLoad(const json& o, const std::string& ptr) {
+    auto type = rd_.String(o, "type", ptr);
+    std::vector<std::string> allowed = {"name", "description", "type"}, required = {"name", "type"};
+    const bool spring = type && *type == "spring";
+    if (spring) {
+      allowed.insert(allowed.end(), {"body1", "point1", "body2", "point2", "stiffness", "free_length", "damping", "preload"});
+      required.insert(required.end(), {"body1", "point1", "body2", "point2", "stiffness"});
+    } else if (type && (*type == "force" || *type == "torque")) {
+      allowed.insert(allowed.end(), {"body", "components", "frame"});
+      required.insert(required.end(), {"body", "components"});
+      if (*type == "force") {
+        allowed.push_back("point");
+        required.push_back("point");
+      }
+    } else if (type) {
+      rd_.Error(ptr + "/type", "unknown load type '" + Shorten(*type) + "'", "types: force, torque, spring");
+      return;
+    }
+    if (!rd_.CheckObject(o, ptr, allowed, required, "a load") || !type) return;
+    auto name = rd_.Name(o, ptr, "load");
+    Load load;
+    const bool ok = spring ? ReadSpring(o, ptr, &load) : ReadForceOrTorque(o, ptr, *type == "force", &load);
+    if (!ok || !name) return;
+    load.name = *name;
+    model_.loads.push_back(load);
+  }
+
+  bool ReadForceOrTorque(const json& o, const std::string& ptr, bool force, Load* load) {
+    load->kind = force ? LoadKind::Force : LoadKind::Torque;
+    auto b = BodyRef(o, "body", ptr);
+    bool ok = b.has_value();
+    if (b && *b == kGround) {
+      rd_.Error(ptr + "/body", "a load on ground does nothing", "name a moving body");
+      ok = false;
+    }
+    if (force) {
+      auto p = LengthVector(o, "point", ptr);
+      if (p && ok) load->point1 = LocalPoint(*b, *p);
+      ok = ok && p;
+    }
+    if (auto f = rd_.String(o, "frame", ptr)) {
+      if (*f != "global" && *f != "body") {
+        rd_.Error(ptr + "/frame", "unknown frame '" + Shorten(*f) + "'", "use \"global\" or \"body\"");
+        ok = false;
+      }
+      load->in_body_axes = *f == "body";
+    }
+    const json& c = o.at("components");
+    if (!c.is_array() || c.size() != 3) {
+      rd_.Error(ptr + "/components", "'components' must be 3 numbers or expressions of t");
+      return false;
+    }
+    const double scale = force ? model_.units.force_to_si() : model_.units.torque_to_si();
+    for (int k = 0; k < 3; ++k) {
+      auto f = Component(c[k], ptr + "/components/" + std::to_string(k), scale);
+      if (f) load->components[k] = *f;
+      else ok = false;
+    }
+    if (b) load->body1 = *b;
+    return ok;
+  }
+
+  bool ReadSpring(const json& o, const std::string& ptr, Load* load) {
+    load->kind = LoadKind::Spring;
+    auto b1 = BodyRef(o, "body1", ptr), b2 = BodyRef(o, "body2", ptr);
+    auto p1 = LengthVector(o, "point1", ptr), p2 = LengthVector(o, "point2", ptr);
+    auto k = rd_.Number(o, "stiffness", ptr);
+    if (!b1 || !b2 || !p1 || !p2 || !k) return false;
+    if (*b1 == *b2) {
+      rd_.Error(ptr + "/body2", "a spring between a body and itself does nothing", "name two different bodies");
+      return false;
+    }
+    const double stiffness_to_si = model_.units.mass_to_si;  // force/length = mass/s²
+    load->body1 = *b1;
+    load->body2 = *b2;
+    load->point1 = LocalPoint(*b1, *p1);
+    load->point2 = LocalPoint(*b2, *p2);
+    load->stiffness = *k * stiffness_to_si;
+    load->free_length = (*p2 - *p1).norm();
+    if (auto L0 = rd_.Number(o, "free_length", ptr)) load->free_length = *L0 * length_;
+    if (auto c = rd_.Number(o, "damping", ptr)) load->damping = *c * stiffness_to_si;
+    if (auto f = rd_.Number(o, "preload", ptr)) load->preload = *f * model_.units.force_to_si();
+    if (!(load->free_length >= 0) || load->stiffness < 0 || load->damping < 0) {
+      rd_.Error(ptr, "stiffness, damping and free length must not be negative", "check the signs");
+      return false;
+    }
+    return true;
   }
 
   // A point 1000× farther from the middle of the mechanism than its typical
@@ -1242,6 +1444,8 @@ LoadResult LoadMechanismText(const std::string& text, const std::string& source_
   spec.ReadAnalysis(doc);
   spec.ReadArray(doc, "outputs", "output", [&](const json& e, const std::string& p) { spec.ReadOutput(e, p); });
   spec.ReadExpect(doc);
+  spec.ReadGravity(doc);
+  spec.ReadArray(doc, "loads", "load", [&](const json& e, const std::string& p) { spec.ReadLoad(e, p); });
   if (!result.errors.empty()) return result;
   Model& model = spec.model();
   model.characteristic_length = CharacteristicLength(model);

@@ -26,4 +26,11 @@ const char* JointTypeName(JointType type) {
   return "?";
 }
 
+bool Model::HasForces() const {
+  if (!loads.empty() || gravity.norm() > 0) return true;
+  for (const auto& b : bodies)
+    if (b.inertia) return true;
+  return false;
+}
+
 }  // namespace mechkin

@@ -5,6 +5,7 @@
 // for ground, local == global. Everything is SI (m, rad, s).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,10 +20,34 @@ namespace mechkin {
 using BodyIndex = int;
 constexpr BodyIndex kGround = -1;
 
+/// Mass properties of a body (SI), in body coordinates.
+struct Inertia {
+  double mass = 0;
+  Vec3 center = Vec3::Zero();      // centre of mass s'_c (body frame)
+  Mat3 moments = Mat3::Zero();     // inertia tensor J'_c about the centre (body axes)
+};
+
 struct Body {
   std::string name;
   Vec3 position;  // r at the design configuration (global, m)
   Vec4 euler;     // p at the design configuration (unit, scalar first)
+  std::optional<Inertia> inertia;
+};
+
+enum class LoadKind { Force, Torque, Spring };
+
+/// An applied load (SI). Force: on `body1` at `point1`; torque: on `body1`;
+/// components are functions of t, in global axes or (in_body_axes) body1's.
+/// Spring-damper: between point1 on body1 and point2 on body2; tension
+/// k (L − L0) + c L̇ + preload pulls the points together.
+struct Load {
+  std::string name;
+  LoadKind kind = LoadKind::Force;
+  BodyIndex body1 = kGround, body2 = kGround;
+  Vec3 point1 = Vec3::Zero(), point2 = Vec3::Zero();  // local points
+  std::array<TimeFunction, 3> components;
+  bool in_body_axes = false;
+  double stiffness = 0, free_length = 0, damping = 0, preload = 0;
 };
 
 enum class JointType { Revolute, Prismatic, Screw, Cylindrical, Universal, Spherical, Planar, Distance };
@@ -82,6 +107,10 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Driver> drivers;
   std::vector<Output> outputs;
+  Vec3 gravity = Vec3::Zero();  // m/s²
+  std::vector<Load> loads;
+  /// Inertia or loads given: the run also computes driver efforts and reactions.
+  bool HasForces() const;
   std::optional<Analysis> analysis;
   Expect expect;
   double characteristic_length = 1.0;  // m; scale for every length tolerance

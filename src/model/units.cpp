@@ -27,4 +27,33 @@ std::optional<double> AngleUnitToSi(const std::string& name) {
   return std::nullopt;
 }
 
+const std::vector<std::string>& MassUnitNames() {
+  static const std::vector<std::string> names = {"kg", "g", "lb"};
+  return names;
+}
+
+std::optional<double> MassUnitToSi(const std::string& name) {
+  if (name == "kg") return 1.0;
+  if (name == "g") return 1e-3;
+  if (name == "lb") return 0.45359237;  // exact by definition
+  return std::nullopt;
+}
+
+std::string Units::ForceName() const {
+  if (mass_name == "kg" && length_name == "m") return "N";
+  return mass_name + "*" + length_name + "/s^2";
+}
+std::string Units::TorqueName() const {
+  if (mass_name == "kg" && length_name == "m") return "N*m";
+  return mass_name + "*" + length_name + "^2/s^2";
+}
+std::string Units::EnergyName() const {
+  if (mass_name == "kg" && length_name == "m") return "J";
+  return mass_name + "*" + length_name + "^2/s^2";
+}
+std::string Units::PowerName() const {
+  if (mass_name == "kg" && length_name == "m") return "W";
+  return mass_name + "*" + length_name + "^2/s^3";
+}
+
 }  // namespace mechkin

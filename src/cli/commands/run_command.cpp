@@ -38,6 +38,8 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
             return "";
           },
           "in [1e-15, 1e-3]"));
+  cmd->add_flag("--forces", o->forces, "Also compute driver efforts, joint reactions and energies (default when the file has inertia or loads)");
+  cmd->add_flag("--no-forces", o->no_forces, "Kinematics only, even when the file has inertia or loads");
   cmd->add_flag("--keep-partial", o->keep_partial,
                 "On Ctrl-C (SIGINT) write the rows computed so far as a partial table instead of nothing");
   cmd->add_flag("--si", o->si, "Write SI units (m, rad) instead of the file's units");
@@ -112,6 +114,7 @@ AnalysisOptions AnalysisOptionsOf(const RunOptions& o, const Model& model, const
   a.solver = o.solver == "ceres" ? PositionSolver::Ceres : PositionSolver::Newton;
   a.tolerance = o.tolerance;
   a.keep_step_diagnostics = false;
+  a.forces = layout.options().forces;
   if (o.bodies_given || o.outputs_given) {
     // Only the bodies the table shows, or that its outputs read, are needed.
     a.needed_bodies = layout.NeededBodies(model);
@@ -145,6 +148,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   topt.si = o.si;
   topt.all_bodies = !o.bodies_given;
   topt.all_outputs = !o.outputs_given;
+  topt.forces = (o.forces || model.HasForces()) && !o.no_forces;
   for (const auto& b : o.bodies) if (!b.empty()) topt.bodies.push_back(b);
   for (const auto& x : o.outputs) if (!x.empty()) topt.outputs.push_back(x);
   std::unique_ptr<MotionLayout> layout;
@@ -180,6 +184,12 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   const bool rows_written = rows_out.Drain();
   progress.Clear();
   for (const auto& sa : rep.set_aside) err << "mechkin run: redundant equation set aside: " << sa << "\n";
+  if (!rep.indeterminate_reactions.empty()) {
+    err << "mechkin run: overconstrained: these reaction components are not determined by the motion and the loads "
+           "(the table gives the minimum-norm solution; driver efforts are exact); make the joints determinate as "
+           "`mechkin check` suggests:\n";
+    for (const auto& r : rep.indeterminate_reactions) err << "    " << r << "\n";
+  }
   watch.Report(err);
   if (!rep.complete && rep.stop != StopKind::Interrupted) err << "mechkin run: " << o.file << ": " << rep.message << "\n";
   if (o.stats && !steps.empty()) PrintStats(rep, steps, err);

@@ -18,7 +18,8 @@ struct RunOptions {
   double tolerance = 1e-10;           // scaled residual
   bool si = false;
   bool stats = false;
-  bool keep_partial = false;         // SIGINT writes the rows so far (marked partial)
+  bool keep_partial = false;
+  bool forces = false, no_forces = false;         // SIGINT writes the rows so far (marked partial)
   std::vector<std::string> bodies;   // --bodies: subset of body columns
   std::vector<std::string> outputs;  // --outputs: subset of output columns
   bool bodies_given = false, outputs_given = false;
