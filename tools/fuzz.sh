@@ -8,7 +8,7 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 secs="${1:-30}"
 out="$here/build-fuzz"
-cmake -S "$here" -B "$out" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+cmake -S "$here" -B "$out" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DMECHKIN_FUZZ=ON -DMECHKIN_SANITIZE=ON -DMECHKIN_BUILD_TESTS=OFF -DMECHKIN_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$out" -j"$(nproc)" --target fuzz_loader fuzz_expression fuzz_check >/dev/null
 mkdir -p "$out/corpus-loader" "$out/corpus-check" "$out/corpus-expression"

@@ -8,6 +8,7 @@
 #include "cli/commands/bench_command.hpp"
 #include "cli/commands/check_command.hpp"
 #include "cli/commands/run_command.hpp"
+#include "cli/commands/view_command.hpp"
 
 int main(int argc, char** argv) {
   try {
@@ -20,6 +21,8 @@ int main(int argc, char** argv) {
     mechkin::SetupCheckCommand(app, &check);
     mechkin::SetupRunCommand(app, &run);
     mechkin::SetupBenchCommand(app, &bench);
+    mechkin::ViewOptions view;
+    mechkin::SetupViewCommand(app, &view);
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -30,6 +33,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("check")) code = mechkin::RunCheck(check, std::cout, std::cerr);
     if (app.got_subcommand("run")) code = mechkin::RunRun(run, std::cout, std::cerr);
     if (app.got_subcommand("bench")) code = mechkin::RunBenchCommand(bench, std::cout, std::cerr);
+    if (app.got_subcommand("view")) code = mechkin::RunView(view, std::cout, std::cerr);
     // A report that could not be written is a failure, not a success.
     std::cout.flush();
     if (!std::cout) {

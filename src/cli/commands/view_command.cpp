@@ -1,0 +1,69 @@
+#include "cli/commands/view_command.hpp"
+
+#include "analysis/motion.hpp"
+#include "io/viewer.hpp"
+#include "model/loader.hpp"
+
+namespace mechkin {
+
+void SetupViewCommand(CLI::App& app, ViewOptions* o) {
+  CLI::App* cmd = app.add_subcommand("view", "Run the analysis and write an animated 3D page with plots (and glTF)");
+  cmd->add_option("file", o->file, "Mechanism file")->required();
+  cmd->add_option("-o,--output", o->output, "The page (default: FILE's name with .html, in the current folder)");
+  cmd->add_option("--gltf", o->gltf, "Also write the scene and its animation as glTF 2.0 (.glb or .gltf)");
+  cmd->add_option("--order", o->order, "Highest time derivative (plots; default 2)")->check(CLI::Range(0, 4));
+  cmd->add_option("--tol", o->tolerance, "Position tolerance (default 1e-10)")->check(CLI::Range(1e-15, 1e-3));
+  cmd->add_option("--solver", o->solver, "Position solver (newton, ceres)")->check(CLI::IsMember({"newton", "ceres"}));
+  cmd->add_option("--max-frames", o->max_frames, "Rows shown in the page (longer runs are decimated)")->check(CLI::Range(2, 1000000));
+  cmd->add_flag("--forces", o->forces, "Also compute efforts and reactions (default when the file has inertia or loads)");
+  cmd->add_flag("--no-forces", o->no_forces, "Kinematics only");
+}
+
+namespace {
+
+std::string DefaultPage(const std::string& file) {
+  std::string stem = file.substr(file.find_last_of('/') + 1);
+  stem = stem.substr(0, stem.rfind('.'));
+  return (stem.empty() ? "mechanism" : stem) + ".html";
+}
+
+}  // namespace
+
+int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
+  const LoadResult loaded = LoadMechanismFile(o.file);
+  for (const auto& w : loaded.warnings) err << o.file << ": warning: " << w.ToString() << "\n";
+  if (!loaded.ok()) {
+    for (const auto& e : loaded.errors) err << o.file << ": error: " << e.ToString() << "\n";
+    return 1;
+  }
+  const Model& model = *loaded.model;
+  TableOptions t;
+  t.order = o.order;
+  t.forces = (o.forces || model.HasForces()) && !o.no_forces && o.order >= 2;
+  AnalysisOptions a;
+  a.tolerance = o.tolerance;
+  a.solver = o.solver == "ceres" ? PositionSolver::Ceres : PositionSolver::Newton;
+  a.keep_step_diagnostics = false;
+  const Motion motion = RunMotion(model, a, t);
+  if (!motion.complete) err << "mechkin view: " << o.file << ": " << motion.stop.message << "\n";
+  if (motion.rows() == 0) return 1;  // nothing to show
+  SceneOptions scene;
+  scene.max_frames = o.max_frames;
+  std::string why;
+  const std::string page = o.output.empty() ? DefaultPage(o.file) : o.output;
+  if (!WriteViewerHtml(model, motion, scene, page, &why)) {
+    err << "mechkin view: " << why << "\n";
+    return 1;
+  }
+  out << "page written to " << page << (motion.complete ? "" : " (partial motion: the stop is marked)") << "\n";
+  if (!o.gltf.empty()) {
+    if (!WriteGltf(model, motion, o.gltf, &why)) {
+      err << "mechkin view: " << why << "\n";
+      return 1;
+    }
+    out << "glTF written to " << o.gltf << "\n";
+  }
+  return motion.complete ? 0 : 1;
+}
+
+}  // namespace mechkin

@@ -1,0 +1,24 @@
+// `mechkin view FILE`: runs the analysis and writes an animated 3D page (and a glTF file).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <ostream>
+#include <string>
+
+namespace mechkin {
+
+struct ViewOptions {
+  std::string file;
+  std::string output;          // -o; default: the file's stem + .html
+  std::string gltf;            // --gltf: .glb or .gltf
+  int order = 2;
+  double tolerance = 1e-10;
+  std::string solver = "newton";
+  int max_frames = 2000;
+  bool forces = false, no_forces = false;
+};
+
+void SetupViewCommand(CLI::App& app, ViewOptions* options);
+int RunView(const ViewOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace mechkin

@@ -1,0 +1,28 @@
+// `mechkin view`: the motion as one self-contained HTML page (three.js from
+// Debian's libjs-three inlined, the scene and the table embedded; no network)
+// and as a glTF 2.0 file (nodes with one keyframe animation per body).
+#pragma once
+
+#include <string>
+
+#include "analysis/motion.hpp"
+
+namespace mechkin {
+
+/// What the scene draws, from the model alone: per body its points (joint,
+/// output, driver, load points and the centre of mass, body coordinates).
+struct SceneOptions {
+  int max_frames = 2000;     // longer motions are decimated for the page
+  std::string three_js_dir;  // where three.min.js and OrbitControls.js are; empty: the default
+};
+
+/// The Motion must hold every body (TableOptions::all_bodies).
+bool WriteViewerHtml(const Model& model, const Motion& motion, const SceneOptions& options, const std::string& path,
+                     std::string* error);
+/// .glb (binary) or .gltf (JSON with the buffer embedded), lengths in metres.
+bool WriteGltf(const Model& model, const Motion& motion, const std::string& path, std::string* error);
+
+/// Default location of Debian's libjs-three.
+std::string DefaultThreeJsDir();
+
+}  // namespace mechkin
