@@ -78,6 +78,25 @@ def test_a_body_is_drawn_where_its_pose_puts_it(cli, tmp_path):
     assert (np.abs(a - c).sum(axis=2) > 60).sum() > 200
 
 
+def test_a_body_shape_is_drawn(cli, tmp_path):
+    # The same scene with and without a sphere on the slider: the shape adds pixels
+    # in the 3D view, and the page loads without errors.
+    doc = json.load(open(os.path.join(ROOT, "mechanisms", "spatial-slider-crank.json")))
+    pages = []
+    for with_shape in (False, True):
+        if with_shape:
+            doc["bodies"][-1]["shape"] = {"type": "sphere", "radius": 0.04}
+        src = tmp_path / ("s%d.json" % with_shape)
+        src.write_text(json.dumps(doc))
+        page = tmp_path / ("s%d.html" % with_shape)
+        assert view(cli, str(src), page).returncode == 0
+        attrs, _ = browser.dump_dom(page, "t=0.3")
+        assert attrs.get("data-ready") == "1" and "data-errors" not in attrs
+        pages.append(pixels(browser.screenshot(page, tmp_path / ("s%d.png" % with_shape), "t=0.3")))
+    scene = (slice(60, 680), slice(0, 690))
+    assert (np.abs(pages[0][scene] - pages[1][scene]).sum(axis=2) > 60).sum() > 300
+
+
 def read_glb(path):
     data = open(path, "rb").read()
     magic, version, length = struct.unpack_from("<III", data, 0)

@@ -104,7 +104,15 @@ void WriteBodies(const Model& model, const Motion& m, const ScenePoints& sp, con
     j->Raw(b ? ",{" : "{");
     j->Key("name"), j->Str(model.bodies[b].name), j->Raw(","), j->Key("points"), j->Raw("[");
     for (size_t k = 0; k < sp.body[b].size(); ++k) { if (k) j->Raw(","); j->Vec(sp.body[b][k], L); }
-    j->Raw("],"), j->Key("poses"), j->Raw("[");
+    j->Raw("],");
+    if (const auto& sh = model.bodies[b].shape) {
+      static const char* kKinds[] = {"box", "cylinder", "sphere"};
+      j->Key("shape"), j->Raw("{"), j->Key("type"), j->Str(kKinds[static_cast<int>(sh->kind)]), j->Raw(",");
+      j->Key("size"), j->Vec(sh->size, L), j->Raw(","), j->Key("radius"), j->Num(sh->radius * L), j->Raw(",");
+      j->Key("length"), j->Num(sh->length * L), j->Raw(","), j->Key("center"), j->Vec(sh->center, L), j->Raw(",");
+      j->Key("axis"), j->Vec(sh->axis, 1), j->Raw("},");
+    }
+    j->Key("poses"), j->Raw("[");
     for (size_t f = 0; f < frames.size(); ++f) {
       const int r = frames[f];
       if (f) j->Raw(",");

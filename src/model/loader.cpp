@@ -525,7 +525,7 @@ class SpecReader {
   }
 
   void ReadBody(const json& b, const std::string& ptr) {
-    if (!rd_.CheckObject(b, ptr, {"name", "description", "position", "orientation", "inertia"}, {"name", "position"},
+    if (!rd_.CheckObject(b, ptr, {"name", "description", "position", "orientation", "inertia", "shape"}, {"name", "position"},
                          "a body"))
       return;
     Body body;
@@ -554,6 +554,7 @@ class SpecReader {
     }
     body.name = *name;
     body.position = *pos;
+    if (b.contains("shape")) body.shape = ReadShape(b.at("shape"), ptr + "/shape");
     if (b.contains("inertia")) {
       body.inertia = ReadInertia(b, ptr, *pos, body.euler);
       if (!body.inertia) {
@@ -881,6 +882,46 @@ class SpecReader {
       return false;
     }
     return true;
+  }
+
+  // "shape": {"type": "box", "size": [a, b, c]} | {"type": "cylinder", "radius", "length", "axis"}
+  // | {"type": "sphere", "radius"}, with an optional "center"; all in body coordinates (file units).
+  // For drawing only; a bad shape is reported but does not change the analysis.
+  std::optional<Shape> ReadShape(const json& o, const std::string& ptr) {
+    auto type = rd_.String(o, "type", ptr);
+    if (!rd_.CheckObject(o, ptr, {"type", "size", "radius", "length", "axis", "center"}, {"type"}, "'shape'") || !type)
+      return std::nullopt;
+    Shape sh;
+    if (auto c = rd_.Vector(o, "center", ptr, false)) sh.center = *c * length_;
+    auto positive = [&](const char* key) -> double {
+      auto v = rd_.Number(o, key, ptr);
+      if (!v || !(*v > 0)) {
+        rd_.Error(ptr + "/" + key, std::string("'") + key + "' must be a positive number", "give the size in units/length");
+        return 0;
+      }
+      return *v * length_;
+    };
+    if (*type == "box") {
+      sh.kind = Shape::Kind::Box;
+      auto size = rd_.Vector(o, "size", ptr, true);
+      if (!size) rd_.Error(ptr + "/size", "a box needs 'size': [a, b, c] along the body axes");
+      else sh.size = size->cwiseAbs() * length_;
+    } else if (*type == "cylinder") {
+      sh.kind = Shape::Kind::Cylinder;
+      sh.radius = positive("radius");
+      sh.length = positive("length");
+      if (auto a = rd_.Vector(o, "axis", ptr, true)) {
+        if (a->norm() > 0) sh.axis = a->normalized();
+        else rd_.Error(ptr + "/axis", "the cylinder 'axis' is the zero vector", "give a direction, e.g. [0, 0, 1]");
+      }
+    } else if (*type == "sphere") {
+      sh.kind = Shape::Kind::Sphere;
+      sh.radius = positive("radius");
+    } else {
+      rd_.Error(ptr + "/type", "unknown shape '" + Shorten(*type) + "'", "use box, cylinder or sphere");
+      return std::nullopt;
+    }
+    return sh;
   }
 
   // "gravity": [gx, gy, gz] in length/s².

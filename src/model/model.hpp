@@ -27,11 +27,20 @@ struct Inertia {
   Mat3 moments = Mat3::Zero();     // inertia tensor J'_c about the centre (body axes)
 };
 
+/// Optional drawing geometry of a body (the viewer only): in body coordinates.
+struct Shape {
+  enum class Kind { Box, Cylinder, Sphere } kind = Kind::Box;
+  Vec3 size = Vec3::Zero();    // box: edge lengths along the body axes
+  double radius = 0, length = 0;  // cylinder (along `axis`), sphere (radius)
+  Vec3 center = Vec3::Zero(), axis = Vec3::UnitZ();
+};
+
 struct Body {
   std::string name;
   Vec3 position;  // r at the design configuration (global, m)
   Vec4 euler;     // p at the design configuration (unit, scalar first)
   std::optional<Inertia> inertia;
+  std::optional<Shape> shape;
 };
 
 enum class LoadKind { Force, Torque, Spring };

@@ -56,6 +56,34 @@ TEST(Loader, HostileInputsDoNotThrow) {
   }
 }
 
+// The optional drawing shape: read in body coordinates and scaled by the file's length unit;
+// a bad shape names its place in the file.
+TEST(Loader, BodyShapeIsScaledAndChecked) {
+  const std::string ok = R"({"mechkin": 1, "units": {"length": "mm"},
+    "bodies": [{"name": "crank", "position": [0, 0, 0],
+                "shape": {"type": "cylinder", "radius": 5, "length": 40, "axis": [0, 0, 2], "center": [10, 0, 0]}}],
+    "joints": [{"name": "j", "type": "revolute", "body1": "ground", "body2": "crank", "origin": [0, 0, 0], "axis": [0, 0, 1]}]})";
+  const LoadResult r = LoadMechanismText(ok, "inline");
+  ASSERT_TRUE(r.ok());
+  const auto& shape = r.model->bodies[0].shape;
+  ASSERT_TRUE(shape.has_value());
+  EXPECT_EQ(shape->kind, Shape::Kind::Cylinder);
+  EXPECT_DOUBLE_EQ(shape->radius, 0.005);
+  EXPECT_DOUBLE_EQ(shape->length, 0.040);
+  EXPECT_DOUBLE_EQ(shape->center.x(), 0.010);
+  EXPECT_DOUBLE_EQ(shape->axis.z(), 1.0);
+
+  const std::string bad = R"({"mechkin": 1,
+    "bodies": [{"name": "a", "position": [0, 0, 0], "shape": {"type": "cone", "radius": 1}},
+               {"name": "b", "position": [0, 0, 0], "shape": {"type": "cylinder", "radius": -1, "length": 1, "axis": [0, 0, 0]}}],
+    "joints": []})";
+  const LoadResult e = LoadMechanismText(bad, "inline");
+  EXPECT_FALSE(e.ok());
+  EXPECT_TRUE(HasPointer(e, "/bodies/0/shape/type"));
+  EXPECT_TRUE(HasPointer(e, "/bodies/1/shape/radius"));
+  EXPECT_TRUE(HasPointer(e, "/bodies/1/shape/axis"));
+}
+
 TEST(Loader, MissingFileIsAnError) {
   const LoadResult r = LoadMechanismFile("/nonexistent/file.json");
   ASSERT_EQ(r.errors.size(), 1u);

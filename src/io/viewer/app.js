@@ -50,6 +50,17 @@
       pts.forEach(function (p) { g.add(stick(c, p, thick, mat)); });
       g.add(ball(c, thick * 1.3, mat));
     } else if (pts.length === 1) g.add(ball(pts[0], thick * 2, mat));
+    if (b.shape) {  // the user's own geometry, semi-transparent over the sticks
+      const sm = new THREE.MeshLambertMaterial({ color: palette[i % palette.length], transparent: true, opacity: 0.45 });
+      let geo;
+      if (b.shape.type === "box") geo = new THREE.BoxBufferGeometry(b.shape.size[0], b.shape.size[1], b.shape.size[2]);
+      else if (b.shape.type === "cylinder") geo = new THREE.CylinderBufferGeometry(b.shape.radius, b.shape.radius, b.shape.length, 24);
+      else geo = new THREE.SphereBufferGeometry(b.shape.radius, 24, 16);
+      const mesh = new THREE.Mesh(geo, sm);
+      mesh.position.copy(v3(b.shape.center));
+      if (b.shape.type === "cylinder") mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), v3(b.shape.axis).normalize());
+      g.add(mesh);
+    }
     g.traverse(function (o) { if (o.isMesh) { o.userData.label = b.name; pickable.push(o); } });
     g.userData.color = palette[i % palette.length];
     scene.add(g);
