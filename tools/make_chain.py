@@ -6,7 +6,9 @@ on R_{i-1} by a universal joint and closes onto R_i with a spherical joint. R_0
 is the driven crank. Every loop is a Grashof crank-rocker (crank 0.04, coupler
 0.12, rocker 0.08, frame 0.10 m): R_i carries a 0.08 m rocker arm for loop i and
 a 0.04 m crank arm (same direction) for loop i+1, so no input angle is singular.
-Usage: python3 tools/make_chain.py N [OUT.json]   (default: stdout)
+With --revolute every coupler joint is a revolute about z too: the planar chain,
+overconstrained by 3 equations per loop (mobility 1, Grübler 1 − 3N).
+Usage: python3 tools/make_chain.py N [OUT.json] [--revolute]   (default: stdout)
 """
 import json
 import math
@@ -15,7 +17,7 @@ import sys
 CRANK, COUPLER, ROCKER, FRAME = 0.04, 0.12, 0.08, 0.10
 
 
-def chain(n, theta0_deg=60.0, turns=1.0, steps=100):
+def chain(n, theta0_deg=60.0, turns=1.0, steps=100, revolute=False):
     bodies = [{"name": "R0", "position": [0.0, 0.0, 0.0]}]
     joints = [{"name": "pivot0", "type": "revolute", "body1": "ground", "body2": "R0",
                "origin": [0.0, 0.0, 0.0], "axis": [0, 0, 1]}]
@@ -33,10 +35,19 @@ def chain(n, theta0_deg=60.0, turns=1.0, steps=100):
         axis2 = [-u[1], u[0], 0.0]  # z × u: keeps the coupler from spinning
         bodies.append({"name": "C%d" % i, "position": [(b[0] + c[0]) / 2, (b[1] + c[1]) / 2, 0.0]})
         bodies.append({"name": "R%d" % i, "position": [o[0], o[1], 0.0]})
+        if revolute:
+            joints += [
+                {"name": "A%d" % i, "type": "revolute", "body1": "R%d" % (i - 1), "body2": "C%d" % i,
+                 "origin": [b[0], b[1], 0.0], "axis": [0, 0, 1]},
+                {"name": "B%d" % i, "type": "revolute", "body1": "C%d" % i, "body2": "R%d" % i,
+                 "origin": [c[0], c[1], 0.0], "axis": [0, 0, 1]}]
+        else:
+            joints += [
+                {"name": "U%d" % i, "type": "universal", "body1": "R%d" % (i - 1), "body2": "C%d" % i,
+                 "origin": [b[0], b[1], 0.0], "axis1": [0, 0, 1], "axis2": axis2},
+                {"name": "S%d" % i, "type": "spherical", "body1": "C%d" % i, "body2": "R%d" % i,
+                 "origin": [c[0], c[1], 0.0]}]
         joints += [
-            {"name": "U%d" % i, "type": "universal", "body1": "R%d" % (i - 1), "body2": "C%d" % i,
-             "origin": [b[0], b[1], 0.0], "axis1": [0, 0, 1], "axis2": axis2},
-            {"name": "S%d" % i, "type": "spherical", "body1": "C%d" % i, "body2": "R%d" % i, "origin": [c[0], c[1], 0.0]},
             {"name": "pivot%d" % i, "type": "revolute", "body1": "ground", "body2": "R%d" % i,
              "origin": [o[0], o[1], 0.0], "axis": [0, 0, 1]}]
         theta = math.atan2(c[1] - o[1], c[0] - o[0])
@@ -48,14 +59,16 @@ def chain(n, theta0_deg=60.0, turns=1.0, steps=100):
         "drivers": [{"name": "crank", "type": "rotation", "joint": "pivot0", "function": "%g*t" % (360 * turns)}],
         "analysis": {"start": 0, "end": 1, "steps": steps},
         "outputs": [{"name": "last_rocker", "type": "joint", "joint": "pivot%d" % n}],
-        "expect": {"grubler": 1, "mobility": 1, "redundant": 0, "idle": 0, "driven": "full"},
+        "expect": {"grubler": 1 - 3 * n if revolute else 1, "mobility": 1, "redundant": 3 * n if revolute else 0,
+                   "idle": 0, "driven": "full"},
     }
 
 
 if __name__ == "__main__":
-    n = int(sys.argv[1])
-    doc = json.dumps(chain(n), indent=1) + "\n"
-    if len(sys.argv) > 2:
-        open(sys.argv[2], "w").write(doc)
+    args = [a for a in sys.argv[1:] if a != "--revolute"]
+    n = int(args[0])
+    doc = json.dumps(chain(n, revolute="--revolute" in sys.argv), indent=1) + "\n"
+    if len(args) > 1:
+        open(args[1], "w").write(doc)
     else:
         sys.stdout.write(doc)

@@ -6,7 +6,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-build}"; shift || true
-pkgs=(g++ cmake ninja-build libeigen3-dev libceres-dev nlohmann-json3-dev libcli11-dev
+pkgs=(g++ cmake ninja-build libeigen3-dev libceres-dev libsuitesparse-dev nlohmann-json3-dev libcli11-dev
       libgtest-dev libgmock-dev libbenchmark-dev python3 python3-dev python3-jsonschema
       pybind11-dev python3-numpy python3-pandas python3-pytest python3-pil libjs-three chromium
       clang libclang-rt-14-dev valgrind libsimbody-dev)

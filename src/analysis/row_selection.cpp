@@ -1,6 +1,7 @@
 #include "analysis/row_selection.hpp"
 
 #include "kinematics/position.hpp"
+#include "kinematics/sparse_rank.hpp"
 #include "mobility/mobility.hpp"
 
 namespace mechkin {
@@ -10,8 +11,18 @@ constexpr double kRowIndependence = 1e-7;
 
 RowSelection SelectRows(const ConstraintSystem& sys, const SystemState& s) {
   RowSelection sel;
-  sel.active = AllRows(sys);
-  if (6 * sys.num_bodies() <= 1200) sel.active = IndependentRows(ScaledJacobian(sys, s), kRowIndependence, &sel.set_aside);
+  if (6 * sys.num_bodies() <= 1200) {
+    sel.active = IndependentRows(ScaledJacobian(sys, s), kRowIndependence, &sel.set_aside);
+  } else {
+    // Large models: the same greedy file-order rule by the sparse rank-revealing QR.
+    const SparseRowRank rr(ScaledSparseJacobian(sys, s, AllRows(sys)), kRowIndependence);
+    if (rr.ok()) {
+      sel.active = rr.independent();
+      sel.set_aside = rr.dependent();
+    } else {
+      sel.active = AllRows(sys);
+    }
+  }
   for (int row : sel.set_aside) {
     if (row >= sys.num_joint_rows()) sel.conflicting_drivers.push_back(sys.SourceName(row));
     else sel.set_aside_names.push_back(sys.DescribeRow(row));

@@ -32,6 +32,7 @@ json MobilityJson(const MobilityReport& r, int drivers) {
   j["mobility"] = r.mobility;
   j["redundant"] = r.redundant;
   j["rank_threshold"] = kRankThreshold;
+  j["rank_method"] = r.rank_method;
   j["sigma_min_kept"] = r.sigma_min_kept;
   j["sigma_max_dropped"] = r.sigma_max_dropped;
   j["redundant_equations"] = json::array();
@@ -57,8 +58,10 @@ void PrintMobility(const MobilityReport& m, int drivers, std::ostream& out) {
     return;
   }
   char buf[200];
-  std::snprintf(buf, sizeof buf, "  mobility (rank): %d  [rank %d of %d equations; margin: smallest kept σ %.2e, largest dropped σ %.2e]\n",
-                m.mobility, m.rank, m.equations, m.sigma_min_kept, m.sigma_max_dropped);
+  const bool qr = m.rank_method == "sparse-qr";
+  std::snprintf(buf, sizeof buf, "  mobility (rank): %d  [rank %d of %d equations%s; margin: smallest kept %s %.2e, largest dropped %s %.2e]\n",
+                m.mobility, m.rank, m.equations, qr ? ", sparse QR" : "", qr ? "pivot" : "σ", m.sigma_min_kept,
+                qr ? "norm" : "σ", m.sigma_max_dropped);
   out << buf << "  redundant equations: " << m.redundant << "\n";
   for (const auto& e : m.redundant_equations) {
     out << "    - " << e.description;

@@ -50,28 +50,19 @@ Eigen::MatrixXd ScaledJacobian(const ConstraintSystem& sys, const SystemState& s
   return J;
 }
 
-SolveSummary AssembleMinNorm(const ConstraintSystem& sys, const std::vector<int>& rows, const SolveOptions& options,
-                             SystemState* s) {
+SolveSummary DampedGaussNewton(const ConstraintSystem& sys, const std::vector<int>& rows, const SolveOptions& options,
+                               const ScaledStep& step, SystemState* s) {
   SolveSummary sum;
   const double L = sys.model().characteristic_length;
   const Eigen::VectorXd w = RowScales(sys, rows);
   Eigen::VectorXd phi;
-  Eigen::MatrixXd J;
   CalcPhi(sys, *s, &phi);
   sum.residual = ScaledResidual(phi, rows, w);
   for (sum.iterations = 0; sum.iterations < options.max_iterations; ++sum.iterations) {
     if (sum.residual <= options.tolerance) break;
-    CalcJacobianDense(sys, *s, Formulation::Omega, &J);
-    Eigen::MatrixXd Js(rows.size(), J.cols());
     Eigen::VectorXd rs(rows.size());
-    for (size_t k = 0; k < rows.size(); ++k) {
-      Js.row(k) = J.row(rows[k]) * w[k];
-      rs[k] = phi[rows[k]] * w[k];
-    }
-    for (int b = 0; b < sys.num_bodies(); ++b) Js.middleCols(6 * b, 3) *= L;
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(Js);
-    cod.setThreshold(1e-10);
-    Eigen::VectorXd dq = -cod.solve(rs);
+    for (size_t k = 0; k < rows.size(); ++k) rs[k] = phi[rows[k]] * w[k];
+    Eigen::VectorXd dq = -step(*s, rs);
     for (int b = 0; b < sys.num_bodies(); ++b) dq.segment<3>(6 * b) *= L;
     // Backtracking on the scaled residual keeps rough starts on the nearby branch.
     const SystemState saved = *s;
@@ -97,6 +88,23 @@ SolveSummary AssembleMinNorm(const ConstraintSystem& sys, const std::vector<int>
   if (sum.success) sum.message = "assembled";
   else if (sum.message.empty()) sum.message = "did not converge in " + std::to_string(options.max_iterations) + " iterations";
   return sum;
+}
+
+SolveSummary AssembleMinNorm(const ConstraintSystem& sys, const std::vector<int>& rows, const SolveOptions& options,
+                             SystemState* s) {
+  const Eigen::VectorXd w = RowScales(sys, rows);
+  const double L = sys.model().characteristic_length;
+  auto dense_min_norm_step = [&](const SystemState& state, const Eigen::VectorXd& rs) {
+    Eigen::MatrixXd J;
+    CalcJacobianDense(sys, state, Formulation::Omega, &J);
+    Eigen::MatrixXd Js(rows.size(), J.cols());
+    for (size_t k = 0; k < rows.size(); ++k) Js.row(k) = J.row(rows[k]) * w[k];
+    for (int b = 0; b < sys.num_bodies(); ++b) Js.middleCols(6 * b, 3) *= L;
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(Js);
+    cod.setThreshold(1e-10);
+    return Eigen::VectorXd(cod.solve(rs));
+  };
+  return DampedGaussNewton(sys, rows, options, dense_min_norm_step, s);
 }
 
 std::vector<int> IndependentRows(const Eigen::MatrixXd& J, double rel_tol, std::vector<int>* dependent) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,13 @@ double ScaledResidual(const Eigen::VectorXd& phi, const std::vector<int>& rows, 
 void ApplyStep(const Eigen::VectorXd& dq, SystemState* s);
 /// All rows 0..m−1.
 std::vector<int> AllRows(const ConstraintSystem& sys);
+
+/// A Gauss–Newton step in scaled variables: dq_s with J_s dq_s ≈ rs (rs: the scaled
+/// residual of the selected rows); the caller scales back and line-searches.
+using ScaledStep = std::function<Eigen::VectorXd(const SystemState&, const Eigen::VectorXd& rs)>;
+/// Damped Gauss–Newton with backtracking on the scaled residual of `rows`.
+SolveSummary DampedGaussNewton(const ConstraintSystem& sys, const std::vector<int>& rows, const SolveOptions& options,
+                               const ScaledStep& step, SystemState* s);
 
 /// Damped minimum-norm Gauss–Newton on the selected rows (dense; any shape of
 /// system). Used to assemble rough design poses and by the mobility analysis.

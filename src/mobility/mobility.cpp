@@ -2,18 +2,23 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <random>
 #include <set>
+#include <unordered_map>
 
 #include "constraints/system.hpp"
 #include "kinematics/position.hpp"
+#include "kinematics/sparse_rank.hpp"
 
 namespace mechkin {
 
 namespace {
 
-constexpr int kMaxDenseColumns = 1200;  // 200 bodies
+constexpr int kMaxDenseColumns = 1200;  // 200 bodies; larger models take the sparse QR
+constexpr int kMaxNamedRedundant = 200;  // redundant rows whose `fixed_by` is worked out
+constexpr int kMaxNamedFreedoms = 16;    // undriven freedoms named by the bodies they move
 
 struct RankInfo {
   int rank = 0;
@@ -161,30 +166,6 @@ void SeekGenericRank(const Model& model, const ConstraintSystem& joints, const S
   }
 }
 
-// The redundant equations, greedy in file order (later equations are the
-// redundant ones), each with the joints whose equations already fix it.
-// Skipped when the SVD already shows full row rank: the greedy pass is O(m²n).
-void NameRedundantEquations(const ConstraintSystem& joints, const Eigen::MatrixXd& J, MobilityReport* rep_ptr) {
-  MobilityReport& rep = *rep_ptr;
-  std::vector<int> dependent;
-  const std::vector<int> kept = rep.redundant > 0 ? IndependentRows(J, 1e-7, &dependent) : AllRows(joints);
-  for (int row : dependent) {
-    RedundantEquation eq;
-    eq.row = row;
-    eq.description = joints.DescribeRow(row);
-    Eigen::MatrixXd K(kept.size(), J.cols());
-    for (size_t k = 0; k < kept.size(); ++k) K.row(k) = J.row(kept[k]);
-    const Eigen::VectorXd coef = K.transpose().completeOrthogonalDecomposition().solve(J.row(row).transpose());
-    const double cmax = coef.cwiseAbs().maxCoeff();
-    std::set<std::string> names;
-    for (size_t k = 0; k < kept.size(); ++k)
-      if (std::abs(coef[k]) > 1e-6 * cmax) names.insert(joints.SourceName(kept[k]));
-    names.erase(joints.SourceName(row));
-    eq.fixed_by.assign(names.begin(), names.end());
-    rep.redundant_equations.push_back(eq);
-  }
-}
-
 // Rank of joints + drivers together at the same pose: freedoms left, conflicting drivers.
 Eigen::MatrixXd DrivingRank(const Model& model, const ConstraintSystem& full, const SystemState& state, int joint_rank,
                             MobilityReport* rep_ptr) {
@@ -207,10 +188,11 @@ Eigen::MatrixXd DrivingRank(const Model& model, const ConstraintSystem& full, co
   return Jf;
 }
 
-// The rows a rigid motion of `group` must not violate: the joints and drivers,
-// and the output points on the group's bodies. T maps the group twist to q̇.
+// The rows a rigid motion of `group` must not violate: the joints and drivers
+// touching the group, and the output points on the group's bodies. T maps the
+// group twist to q̇.
 Eigen::MatrixXd GroupConstraints(const Model& model, const std::vector<int>& g, const SystemState& state,
-                                 const Eigen::MatrixXd& Jf, Eigen::MatrixXd* T_out) {
+                                 const Eigen::SparseMatrix<double>& Jf, Eigen::MatrixXd* T_out) {
   const int n = model.num_bodies();
   const double L = model.characteristic_length;
   Eigen::MatrixXd& T = *T_out;
@@ -223,8 +205,17 @@ Eigen::MatrixXd GroupConstraints(const Model& model, const std::vector<int>& g, 
     T.block(6 * b, 3, 3, 3) = Mat3::Identity();
     T.block(6 * b + 3, 0, 3, 3) = A.transpose();
   }
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(Jf.rows(), 6);
-  for (int b : g) S += Jf.middleCols(6 * b, 6) * T.middleRows(6 * b, 6);
+  // Only rows with an entry in the group's columns can be violated; Jf is
+  // column-major, so S = Jf(:, group) · T(group, :) is gathered column by column.
+  std::vector<Eigen::RowVectorXd> rows;
+  std::unordered_map<int, size_t> slot;  // row of Jf → index in rows
+  for (int b : g)
+    for (int c = 6 * b; c < 6 * b + 6; ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(Jf, c); it; ++it) {
+        auto [pos, added] = slot.emplace(static_cast<int>(it.row()), rows.size());
+        if (added) rows.push_back(Eigen::RowVectorXd::Zero(6));
+        rows[pos->second] += it.value() * T.row(c);
+      }
   // Output points on the group's bodies must not move.
   for (const auto& o : model.outputs)
     for (BodyIndex ob : {o.body1, o.body2})
@@ -234,17 +225,17 @@ Eigen::MatrixXd GroupConstraints(const Model& model, const std::vector<int>& g, 
         Eigen::MatrixXd Vp(3, 6);
         Vp.leftCols(3) = -Tilde(P) / L;
         Vp.rightCols(3) = Mat3::Identity();
-        Eigen::MatrixXd S2(S.rows() + 3, 6);
-        S2 << S, Vp;
-        S = S2;
+        for (int k = 0; k < 3; ++k) rows.push_back(Vp.row(k));
       }
+  Eigen::MatrixXd S(rows.size(), 6);
+  for (size_t k = 0; k < rows.size(); ++k) S.row(k) = rows[k];
   return S;
 }
 
 // Idle freedoms: a body, or two bodies joined by a joint, moving together as one
 // rigid group while everything else is still, no driver coordinate and no output
 // point moves.
-void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen::MatrixXd& Jf,
+void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen::SparseMatrix<double>& Jf,
                       MobilityReport* rep_ptr) {
   MobilityReport& rep = *rep_ptr;
   const int n = model.num_bodies();
@@ -289,7 +280,8 @@ void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen:
 }
 
 // full / under (naming the freedoms left by the bodies they move most) / over.
-void ClassifyDriving(const Model& model, const Eigen::MatrixXd& Jf, MobilityReport* rep_ptr) {
+void ClassifyDriving(const Model& model, const std::function<Eigen::MatrixXd()>& null_basis_of_full,
+                     MobilityReport* rep_ptr) {
   MobilityReport& rep = *rep_ptr;
   const int n = model.num_bodies();
   const int idle = static_cast<int>(rep.idle.size());
@@ -301,11 +293,11 @@ void ClassifyDriving(const Model& model, const Eigen::MatrixXd& Jf, MobilityRepo
     rep.driving_status = DrivingStatus::Full;
   if (rep.driving_status == DrivingStatus::Under) {
     // Name the remaining freedoms by the bodies they move most.
-    const RankInfo rest = CalcRank(Jf);
+    const Eigen::MatrixXd null_basis = null_basis_of_full();
     for (int c = 0;
-         c < rest.null_basis.cols() && static_cast<int>(rep.remaining_freedoms.size()) < rep.dof_after_drivers - idle;
+         c < null_basis.cols() && static_cast<int>(rep.remaining_freedoms.size()) < rep.dof_after_drivers - idle;
          ++c) {
-      const Eigen::VectorXd v = rest.null_basis.col(c);
+      const Eigen::VectorXd v = null_basis.col(c);
       std::vector<std::pair<double, int>> mv;
       for (int b = 0; b < n; ++b) mv.emplace_back(v.segment<6>(6 * b).norm(), b);
       std::sort(mv.rbegin(), mv.rend());
@@ -318,16 +310,90 @@ void ClassifyDriving(const Model& model, const Eigen::MatrixXd& Jf, MobilityRepo
   }
 }
 
-}  // namespace
 
-MobilityReport CalcMobility(const Model& model) {
+// Redundant rows from the sparse QR, each with the joints whose rows combine to it
+// (named for the first kMaxNamedRedundant; the count is always exact).
+void NameRedundantEquationsSparse(const ConstraintSystem& joints, const SparseRowRank& jr, MobilityReport* rep) {
+  for (int row : jr.dependent()) {
+    RedundantEquation eq;
+    eq.row = row;
+    eq.description = joints.DescribeRow(row);
+    if (static_cast<int>(rep->redundant_equations.size()) < kMaxNamedRedundant) {
+      const Eigen::VectorXd coef = jr.DependentCombination(row);
+      const double cmax = coef.cwiseAbs().maxCoeff();
+      std::set<std::string> names;
+      for (int k = 0; k < coef.size(); ++k)
+        if (cmax > 0 && std::abs(coef[k]) > 1e-6 * cmax) names.insert(joints.SourceName(k));
+      names.erase(joints.SourceName(row));
+      eq.fixed_by.assign(names.begin(), names.end());
+    }
+    rep->redundant_equations.push_back(eq);
+  }
+}
+
+void SetOverconstrainedVerdict(MobilityReport* rep) {
+  rep->verdict_kind = MobilityVerdict::Overconstrained;
+  rep->verdict = "overconstrained: " + std::to_string(rep->redundant) + " redundant equation" +
+                 (rep->redundant == 1 ? "" : "s") + " — the Grübler count undercounts the mobility";
+}
+
+// Models too large for the dense SVD (more than 200 bodies): the same analysis with
+// the sparse rank-revealing QR (kinematics/sparse_rank.hpp). The margin reported is
+// the QR's (smallest kept pivot |R_kk|, largest column left over), not singular
+// values; the search for a more generic pose and the joint-change suggestions are
+// left to the dense path.
+MobilityReport CalcMobilityLarge(const Model& model) {
   MobilityReport rep;
+  rep.rank_method = "sparse-qr";
   const int n = model.num_bodies();
-  if (6 * n > kMaxDenseColumns) {
-    rep.assembly_message = "more than " + std::to_string(kMaxDenseColumns / 6) +
-                           " bodies: the dense rank analysis is skipped (use the Grübler count)";
+  const ConstraintSystem joints(model, false);
+  const ConstraintSystem full(model, true);
+  SystemState state(joints);
+  SolveOptions opt;
+  opt.max_iterations = 100;
+  const SolveSummary assembled = AssembleMinNormSparse(joints, opt, &state);
+  rep.assembly_residual = assembled.residual;
+  rep.equations = joints.num_rows();
+  if (!assembled.success) {
+    rep.assembly_message = "the joints cannot be assembled near the design pose (scaled residual " +
+                           std::to_string(assembled.residual) + "): " + assembled.message;
     return rep;
   }
+  rep.assembled = true;
+  rep.assembly_message = "assembled";
+  const SparseRowRank jr(ScaledSparseJacobian(joints, state, AllRows(joints)));
+  rep.rank = jr.rank();
+  rep.sigma_min_kept = jr.smallest_pivot();
+  rep.sigma_max_dropped = jr.largest_dead();
+  rep.mobility = 6 * n - jr.rank();
+  rep.redundant = joints.num_rows() - jr.rank();
+  NameRedundantEquationsSparse(joints, jr, &rep);
+
+  SystemState fstate(full);
+  fstate.bodies = state.bodies;
+  fstate.angle_ref.assign(full.entries().size(), 0.0);
+  const Eigen::SparseMatrix<double> Jf = ScaledSparseJacobian(full, fstate, AllRows(full));
+  const SparseRowRank fr(Jf);
+  rep.dof_after_drivers = 6 * n - fr.rank();
+  std::set<std::string> conflicting;
+  for (int row : fr.dependent())
+    if (row >= full.num_joint_rows()) conflicting.insert(full.SourceName(row));
+  rep.conflicting_drivers.assign(conflicting.begin(), conflicting.end());
+  rep.driver_rank_deficit = static_cast<int>(model.drivers.size()) - (fr.rank() - jr.rank());
+  FindIdleFreedoms(model, state, Jf, &rep);
+  ClassifyDriving(model, [&] { return fr.NullSpace(kMaxNamedFreedoms); }, &rep);
+  if (rep.redundant > 0) SetOverconstrainedVerdict(&rep);
+  return rep;
+}
+
+}  // namespace
+
+MobilityReport CalcMobilitySparse(const Model& model) { return CalcMobilityLarge(model); }
+
+MobilityReport CalcMobility(const Model& model) {
+  if (6 * model.num_bodies() > kMaxDenseColumns) return CalcMobilityLarge(model);
+  MobilityReport rep;
+  const int n = model.num_bodies();
   const ConstraintSystem joints(model, false);
   const ConstraintSystem full(model, true);
   SystemState state(joints);
@@ -350,16 +416,16 @@ MobilityReport CalcMobility(const Model& model) {
   rep.sigma_max_dropped = info.sigma_max_dropped;
   rep.mobility = 6 * n - info.rank;
   rep.redundant = joints.num_rows() - info.rank;
-  NameRedundantEquations(joints, ScaledJacobian(joints, state), &rep);
+  // The redundant rows by the same greedy file-order rule as the large-model path:
+  // one sparse QR names every row and its combination (a dense pass is O(m²n)).
+  if (rep.redundant > 0) NameRedundantEquationsSparse(joints, SparseRowRank(ScaledJacobian(joints, state).sparseView()), &rep);
   const Eigen::MatrixXd Jf = DrivingRank(model, full, state, info.rank, &rep);
-  FindIdleFreedoms(model, state, Jf, &rep);
-  ClassifyDriving(model, Jf, &rep);
+  FindIdleFreedoms(model, state, Jf.sparseView(), &rep);
+  ClassifyDriving(model, [&] { return CalcRank(Jf).null_basis; }, &rep);
   if (rep.redundant > 0) {
     const std::string suggestion = SuggestRemoval(model, rep);
     if (!suggestion.empty()) rep.suggestions.push_back(suggestion);
-    rep.verdict_kind = MobilityVerdict::Overconstrained;
-    rep.verdict = "overconstrained: " + std::to_string(rep.redundant) + " redundant equation" +
-                  (rep.redundant == 1 ? "" : "s") + " — the Grübler count undercounts the mobility";
+    SetOverconstrainedVerdict(&rep);
   }
   return rep;
 }

@@ -44,6 +44,10 @@ struct MobilityReport {
   int mobility = 0;
   int redundant = 0;
   double sigma_min_kept = 0, sigma_max_dropped = 0;
+  /// How the rank was found: "svd" (dense, ≤ 200 bodies; the margin is in singular
+  /// values) or "sparse-qr" (SuiteSparseQR; the margin is the smallest kept pivot
+  /// |R_kk| and the largest column norm left over).
+  std::string rank_method = "svd";
   std::vector<RedundantEquation> redundant_equations;
   std::vector<IdleFreedom> idle;
   // Driving
@@ -57,6 +61,10 @@ struct MobilityReport {
   std::vector<std::string> suggestions;
 };
 
+/// The mobility analysis; models with more than 200 bodies take the sparse path.
 MobilityReport CalcMobility(const Model& model);
+/// The sparse path for any model (used by CalcMobility above 200 bodies; exposed so
+/// tests can compare both paths on the same model).
+MobilityReport CalcMobilitySparse(const Model& model);
 
 }  // namespace mechkin

@@ -183,7 +183,13 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   });
   const bool rows_written = rows_out.Drain();
   progress.Clear();
-  for (const auto& sa : rep.set_aside) err << "mechkin run: redundant equation set aside: " << sa << "\n";
+  // Large overconstrained models set aside thousands of rows: name the first ones, count the rest.
+  constexpr size_t kListedSetAside = 20;
+  for (size_t k = 0; k < rep.set_aside.size() && k < kListedSetAside; ++k)
+    err << "mechkin run: redundant equation set aside: " << rep.set_aside[k] << "\n";
+  if (rep.set_aside.size() > kListedSetAside)
+    err << "mechkin run: ... and " << rep.set_aside.size() - kListedSetAside
+        << " more redundant equations set aside (mechkin check lists them all)\n";
   if (!rep.indeterminate_reactions.empty()) {
     err << "mechkin run: overconstrained: these reaction components are not determined by the motion and the loads "
            "(the table gives the minimum-norm solution; driver efforts are exact); make the joints determinate as "
