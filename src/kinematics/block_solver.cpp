@@ -41,6 +41,10 @@ BlockSolver::BlockSolver(const ConstraintSystem& sys, const std::vector<int>& ac
     b.x.resize(nb);
     b.cond_x = Eigen::VectorXd::Ones(nb).normalized();
     b.cond_y.resize(nb);
+    b.cond_b.resize(nb);
+    b.row_scale = Eigen::Map<const Eigen::VectorXd>(b.scales.data(), nb);
+    b.col_scale.resize(nb);
+    for (int i = 0; i < nb; ++i) b.col_scale[i] = b.cols[i] % 6 < 3 ? sys.model().characteristic_length : 1.0;
     blocks_.push_back(std::move(b));
   }
   solved_ = static_cast<int>(blocks_.size());
@@ -182,14 +186,18 @@ double BlockSolver::Sign() {
   return sign;
 }
 
+// As NewtonSolver::ConditionEstimate: κ of each dimensionless block W J_bb D.
 double BlockSolver::ConditionEstimate() {
   double worst = 0;
   for (Block& b : blocks_) {
-    b.solver.Solve(b.cond_x, &b.cond_y);
+    b.cond_b = b.cond_x.cwiseQuotient(b.row_scale);
+    b.solver.Solve(b.cond_b, &b.cond_y);
+    b.cond_y.array() /= b.col_scale.array();
     const double inv = b.cond_y.norm();
     if (!(inv > 0) || !std::isfinite(inv)) return std::numeric_limits<double>::infinity();
     b.cond_x = b.cond_y / inv;
-    worst = std::max(worst, b.J.norm() * inv);
+    const double norm = (b.row_scale.asDiagonal() * b.J * b.col_scale.asDiagonal()).norm();
+    worst = std::max(worst, norm * inv);
   }
   return worst;
 }

@@ -48,7 +48,8 @@ class BlockSolver : public Factorization {
     Eigen::MatrixXd coupling;                       // J(rows, all columns of the entries' bodies)
     std::vector<int> coupling_cols;                 // the global columns of `coupling`
     SmallLU solver;
-    Eigen::VectorXd rhs, x, cond_x, cond_y;
+    Eigen::VectorXd rhs, x, cond_x, cond_y, cond_b;
+    Eigen::VectorXd row_scale, col_scale;           // the dimensionless block W J_bb D (condition)
   };
   void FillBlock(Block& b, const SystemState& s, bool coupling);
   double BlockResidual(Block& b, const SystemState& s);

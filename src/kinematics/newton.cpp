@@ -17,6 +17,8 @@ NewtonSolver::NewtonSolver(const ConstraintSystem& sys, std::vector<int> rows)
   dq_.resize(n);
   cond_x_ = Eigen::VectorXd::Ones(n).normalized();
   cond_y_.resize(n);
+  cond_b_.resize(n);
+  col_scales_ = DimensionlessColumnScales(sys);
 }
 
 bool NewtonSolver::Factorize(const SystemState& s) {
@@ -55,14 +57,19 @@ double NewtonSolver::JacobianSign() {
 
 double NewtonSolver::ConditionEstimate() {
   if (!factorized_) return std::numeric_limits<double>::infinity();
-  // ‖J‖_F · ‖J⁻¹‖, with ‖J⁻¹‖ from one step of inverse iteration per call,
-  // warm-started from the previous call's vector: along a run it converges to
-  // the dominant direction of J⁻¹ (an underestimate at worst) for one back-solve.
-  BackSolve(cond_x_, &cond_y_);
+  // κ of the dimensionless Jacobian A = W Φ_q D (rows by 1/L^power, translation
+  // columns by L; constraints.md §6), so the same mechanism gives the same number at
+  // any size and in any unit. ‖A‖_F times ‖A⁻¹‖ from one step of inverse iteration
+  // per call, A⁻¹x = D⁻¹ Φ_q⁻¹ W⁻¹ x, warm-started from the previous call's vector:
+  // along a run it converges to the dominant direction of A⁻¹ (an underestimate at
+  // worst) for one back-solve.
+  cond_b_ = cond_x_.cwiseQuotient(scales_);
+  BackSolve(cond_b_, &cond_y_);
+  cond_y_.array() /= col_scales_.array();
   const double inv_norm = cond_y_.norm();
   if (!(inv_norm > 0) || !std::isfinite(inv_norm)) return std::numeric_limits<double>::infinity();
   cond_x_ = cond_y_ / inv_norm;
-  return jac_.matrix().norm() * inv_norm;
+  return DimensionlessNorm(jac_.matrix(), scales_, col_scales_) * inv_norm;
 }
 
 SolveSummary NewtonSolver::Solve(const SolveOptions& options, SystemState* s, bool reuse) {

@@ -45,8 +45,9 @@ class NewtonSolver : public Factorization {
   const std::vector<int>& rows() const { return rows_; }
   const Eigen::VectorXd& scales() const { return scales_; }
   const Eigen::SparseMatrix<double>& jacobian() const { return jac_.matrix(); }
-  /// Cheap estimate of the condition number of Φ_q (Frobenius norm times an
-  /// inverse-iteration estimate of ‖Φ_q⁻¹‖), from the current factorization.
+  /// Cheap estimate of the condition number of the dimensionless Φ_q (Frobenius
+  /// norm times an inverse-iteration estimate of the inverse's norm), from the
+  /// current factorization: independent of the mechanism's size and units.
   double ConditionEstimate() override;
 
  private:
@@ -59,7 +60,8 @@ class NewtonSolver : public Factorization {
   Eigen::MatrixXd dense_J_;
   SmallLU dense_lu_;
   bool factorized_ = false;
-  Eigen::VectorXd phi_, rhs_, dq_, cond_x_, cond_y_;
+  Eigen::VectorXd phi_, rhs_, dq_, cond_x_, cond_y_, cond_b_;
+  Eigen::VectorXd col_scales_;  // L for translation columns, 1 for rotation (dimensionless κ)
 
 };
 

@@ -40,6 +40,23 @@ void ApplyStep(const Eigen::VectorXd& dq, SystemState* s) {
   }
 }
 
+Eigen::VectorXd DimensionlessColumnScales(const ConstraintSystem& sys) {
+  Eigen::VectorXd c = Eigen::VectorXd::Ones(6 * sys.num_bodies());
+  for (int b = 0; b < sys.num_bodies(); ++b) c.segment<3>(6 * b).setConstant(sys.model().characteristic_length);
+  return c;
+}
+
+double DimensionlessNorm(const Eigen::SparseMatrix<double>& J, const Eigen::VectorXd& row_scales,
+                         const Eigen::VectorXd& col_scales) {
+  double sum = 0;
+  for (int c = 0; c < J.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J, c); it; ++it) {
+      const double v = it.value() * row_scales[it.row()] * col_scales[c];
+      sum += v * v;
+    }
+  return std::sqrt(sum);
+}
+
 Eigen::MatrixXd ScaledJacobian(const ConstraintSystem& sys, const SystemState& s) {
   Eigen::MatrixXd J;
   CalcJacobianDense(sys, s, Formulation::Omega, &J);

@@ -53,6 +53,14 @@ SolveSummary AssembleMinNorm(const ConstraintSystem& sys, const std::vector<int>
 /// scaled Jacobian, relative threshold `rel_tol` on the new direction's norm.
 std::vector<int> IndependentRows(const Eigen::MatrixXd& scaled_J, double rel_tol, std::vector<int>* dependent);
 
+/// Column scales of the dimensionless Jacobian (ω' layout): L for the three
+/// translation columns of each body, 1 for the rotation columns.
+Eigen::VectorXd DimensionlessColumnScales(const ConstraintSystem& sys);
+/// ‖W J D‖_F for a sparse J over the given rows (row_scales = W) and columns (D),
+/// without forming the product.
+double DimensionlessNorm(const Eigen::SparseMatrix<double>& J, const Eigen::VectorXd& row_scales,
+                         const Eigen::VectorXd& col_scales);
+
 /// Jacobian (ω') scaled to be dimensionless: rows by 1/L^power, r columns by L.
 Eigen::MatrixXd ScaledJacobian(const ConstraintSystem& sys, const SystemState& s);
 

@@ -119,8 +119,7 @@ Eigen::SparseMatrix<double> ScaledSparseJacobian(const ConstraintSystem& sys, co
   SparseJacobian jac(sys, Formulation::Omega, rows);
   jac.Fill(sys, s);
   const Eigen::VectorXd w = RowScales(sys, rows);
-  Eigen::VectorXd col_scale = Eigen::VectorXd::Ones(6 * sys.num_bodies());
-  for (int b = 0; b < sys.num_bodies(); ++b) col_scale.segment<3>(6 * b).setConstant(sys.model().characteristic_length);
+  const Eigen::VectorXd col_scale = DimensionlessColumnScales(sys);
   Eigen::SparseMatrix<double> J = w.asDiagonal() * jac.matrix();
   J = J * col_scale.asDiagonal();
   J.makeCompressed();
