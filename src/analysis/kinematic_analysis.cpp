@@ -50,14 +50,42 @@ double PoseDistance(const SystemState& a, const SystemState& b, double length) {
   return d;
 }
 
+WorkspaceOptions WorkspaceOptionsOf(const AnalysisOptions& o) {
+  WorkspaceOptions w;
+  w.formulation = o.formulation;
+  w.solver = o.solver;
+  w.ceres_normalization_residual = o.ceres_normalization_residual;
+  w.order = o.order;
+  if (!o.forces) w.needed_bodies = o.needed_bodies;  // forces need the whole system
+  return w;
+}
+
+// Re-selection of the redundant equations: when the solved rows' condition estimate
+// (dimensionless) exceeds this, look for a better-conditioned set (bundled
+// mechanisms stay below 40 over their whole motion).
+constexpr double kReselectCondition = 100;
+constexpr double kReselectGain = 4;  // ... and switch when that set is this much better
+constexpr double kWellConditionedRows = 1e4;  // 1-norm condition a new set must stay below
+constexpr int kMaxReselectColumns = 1200;  // 200 bodies: the dense QR of the selection
+
+// Condition number (1-norm estimate) of the scaled Jacobian's rows `rows`: compares
+// two independent sets of the same mechanism.
+double RowsCondition(const Eigen::MatrixXd& scaled_J, const std::vector<int>& rows) {
+  Eigen::MatrixXd A(rows.size(), scaled_J.cols());
+  for (size_t k = 0; k < rows.size(); ++k) A.row(k) = scaled_J.row(rows[k]);
+  const double rcond = Eigen::PartialPivLU<Eigen::MatrixXd>(A).rcond();
+  return rcond > 0 ? 1 / rcond : std::numeric_limits<double>::infinity();
+}
+
 // The time stepping of a run: the branch-guarded step, its refinement into
 // sub-steps, and the per-row diagnostics. Owns the state that lives across steps.
 class Stepper {
  public:
-  Stepper(KinematicsWorkspace& ws, const AnalysisOptions& options, const RowSelection& selection, SystemState start)
-      : ws_(ws), model_(ws.system().model()), options_(options), selection_(selection), s_(std::move(start)),
-        prev_(s_), predicted_(s_), good_(s_) {
-    if (options.forces) forces_ = std::make_unique<ForceSolver>(ws.system(), selection, options.order);
+  Stepper(std::unique_ptr<KinematicsWorkspace> ws, const AnalysisOptions& options, RowSelection selection,
+          SystemState start)
+      : ws_(std::move(ws)), model_(ws_->system().model()), options_(options), selection_(std::move(selection)),
+        s_(std::move(start)), prev_(s_), predicted_(s_), good_(s_) {
+    if (options.forces) forces_ = std::make_unique<ForceSolver>(ws_->system(), selection_, options.order);
     solve_.tolerance = options.tolerance;
     solve_.max_iterations = options.max_iterations;
     predictor_ = std::min(options.predictor_order, options.order);
@@ -70,11 +98,13 @@ class Stepper {
   Outcome Attempt(double t, double dt, bool reuse);
   Outcome Refine(double t, StepDiagnostics* diag, double* bad_t);
   void FinishDiagnostics(StepDiagnostics* diag);
+  bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
+  bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
 
-  KinematicsWorkspace& ws_;
+  std::unique_ptr<KinematicsWorkspace> ws_;
   const Model& model_;
   const AnalysisOptions& options_;
-  const RowSelection& selection_;
+  RowSelection selection_;
   SolveOptions solve_;
   int predictor_ = 3;
   SystemState s_, prev_, predicted_, good_;
@@ -92,17 +122,17 @@ class Stepper {
 // position between the two times.
 Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse) {
   EvalDriverFunctions(model_, t, &s_);
-  AimRotationDrivers(ws_.system(), &s_);
+  AimRotationDrivers(ws_->system(), &s_);
   if (dt > 0 && predictor_ > 0) PredictPose(dt, predictor_, &s_);
   predicted_.bodies = s_.bodies;
-  last_ = SolvePosition(ws_, solve_, &s_, reuse && options_.modified_newton);
+  last_ = SolvePosition(*ws_, solve_, &s_, reuse && options_.modified_newton);
   if (!last_.success) return Outcome::Failed;
-  const double sign = ws_.factorization().Sign();
+  const double sign = ws_->factorization().Sign();
   if (options_.branch_guard) {
     if (have_sign_ && sign != prev_sign_) return Outcome::Suspect;
     if (dt > 0 && PoseDistance(predicted_, s_, model_.characteristic_length) > 0.1) return Outcome::Suspect;
   }
-  SolveDerivatives(ws_, options_.order, &s_);
+  SolveDerivatives(*ws_, options_.order, &s_);
   prev_sign_ = sign;
   have_sign_ = true;
   return Outcome::Ok;
@@ -123,7 +153,7 @@ Stepper::Outcome Stepper::Refine(double t, StepDiagnostics* diag, double* bad_t)
       out = Attempt(ti, (t - prev_.t) / parts, true);
       diag->iterations += last_.iterations;
       if (out != Outcome::Ok) { *bad_t = ti; break; }
-      UpdateAngleReferences(ws_.system(), &s_);
+      UpdateAngleReferences(ws_->system(), &s_);
       good_ = s_;
       good_.t = ti;
     }
@@ -135,11 +165,48 @@ Stepper::Outcome Stepper::Refine(double t, StepDiagnostics* diag, double* bad_t)
 void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   diag->residual = last_.residual;
   if (!selection_.set_aside.empty()) {
-    CalcPhi(ws_.system(), s_, &phi_);
+    CalcPhi(ws_->system(), s_, &phi_);
     diag->set_aside_residual = ScaledResidual(phi_, selection_.set_aside, selection_.set_aside_scales);
   }
-  diag->condition = ws_.factorization().ConditionEstimate();
+  diag->condition = ws_->factorization().ConditionEstimate();
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
+}
+
+// Redundancy that follows the motion (issue "Right at every order", item 1): the
+// equations set aside at assembly may stop being the redundant ones (a Bennett
+// linkage half way round). At pose `at`, choose the best-conditioned independent
+// set of the same equations and switch to it when its condition number is at least
+// `min_gain` times smaller. Dense models only; never for mechanisms without redundancy.
+bool Stepper::Reselect(const SystemState& at, double min_gain, AnalysisReport* rep) {
+  const ConstraintSystem& sys = ws_->system();
+  if (selection_.set_aside.empty() || 6 * sys.num_bodies() > kMaxReselectColumns) return false;
+  RowSelection next = SelectWellConditionedRows(sys, at);
+  if (next.active.empty() || next.active == selection_.active) return false;
+  const Eigen::MatrixXd J = ScaledJacobian(sys, at);
+  // Only a well-conditioned alternative: near a singular position of the whole
+  // mechanism (a change point) every set degenerates and the run must stop there.
+  const double next_condition = RowsCondition(J, next.active);
+  if (!(next_condition < kWellConditionedRows) || !(next_condition * min_gain < RowsCondition(J, selection_.active)))
+    return false;
+  selection_ = std::move(next);
+  ws_ = std::make_unique<KinematicsWorkspace>(sys, selection_.active, WorkspaceOptionsOf(options_));
+  if (options_.forces) forces_ = std::make_unique<ForceSolver>(sys, selection_, options_.order);
+  have_sign_ = false;  // det Φ_q of other rows: its sign starts afresh
+  rep->reselections.push_back({at.t, selection_.set_aside_names});
+  return true;
+}
+
+// After an accepted row whose rows have become ill-conditioned: re-select there and
+// solve the row again with the new rows (position from the pose found, derivatives).
+bool Stepper::ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep) {
+  if (!(diag->condition > kReselectCondition) || !Reselect(s_, kReselectGain, rep)) return false;
+  last_ = SolvePosition(*ws_, solve_, &s_, false);
+  if (!last_.success) return false;
+  SolveDerivatives(*ws_, options_.order, &s_);
+  prev_sign_ = ws_->factorization().Sign();
+  have_sign_ = true;
+  FinishDiagnostics(diag);
+  return true;
 }
 
 void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
@@ -154,8 +221,15 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
     diag.iterations = last_.iterations;
     double bad_t = t;
     if (out != Outcome::Ok && step > 0) out = Refine(t, &diag, &bad_t);
+    if (out != Outcome::Ok && step > 0 && Reselect(good_, 1.0, rep)) {
+      // The failure may be the set-aside choice's, not the mechanism's: choose the
+      // best-conditioned rows next to the trouble and retry the step with them.
+      s_ = prev_;
+      out = Attempt(t, h, false);
+      if (out != Outcome::Ok) out = Refine(t, &diag, &bad_t);
+    }
     if (out == Outcome::Suspect && step > 0) {
-      const SingularPosition sp = LocateSingularity(ws_, good_, good_.t, bad_t, prev_sign_, 1e-9 * (t - prev_.t) / 1024,
+      const SingularPosition sp = LocateSingularity(*ws_, good_, good_.t, bad_t, prev_sign_, 1e-9 * (t - prev_.t) / 1024,
                                                     std::max(predictor_, 1));
       rep->stop = StopKind::SingularPosition;
       rep->message = SingularityMessage(model_, sp);
@@ -164,17 +238,18 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
     }
     if (out != Outcome::Ok) {
       rep->stop = StopKind::SolveFailed;
-      rep->message = SolveFailureMessage(ws_, s_, t, rep->rows, last_.message);
+      rep->message = SolveFailureMessage(*ws_, s_, t, rep->rows, last_.message);
       return;
     }
     FinishDiagnostics(&diag);
+    ReselectAndResolve(&diag, rep);
     if (forces_) {
-      forces_->Solve(ws_, s_, &force_results_);
+      forces_->Solve(*ws_, s_, &force_results_);
       diag.forces = &force_results_;
       rep->indeterminate_reactions = forces_->indeterminate();
     }
     diag.solve_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    UpdateAngleReferences(ws_.system(), &s_);
+    UpdateAngleReferences(ws_->system(), &s_);
     if (options_.keep_step_diagnostics) rep->steps.push_back(diag);
     ++rep->rows;
     if (!on_step(s_, diag)) {
@@ -187,15 +262,6 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
   rep->complete = true;
 }
 
-WorkspaceOptions WorkspaceOptionsOf(const AnalysisOptions& o) {
-  WorkspaceOptions w;
-  w.formulation = o.formulation;
-  w.solver = o.solver;
-  w.ceres_normalization_residual = o.ceres_normalization_residual;
-  w.order = o.order;
-  if (!o.forces) w.needed_bodies = o.needed_bodies;  // forces need the whole system
-  return w;
-}
 
 }  // namespace
 
@@ -223,13 +289,13 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     rep.stop = StopKind::Refused;
     rep.message = DrivingRefusal(sys, selection);
     if (!rep.message.empty()) return rep;
-    KinematicsWorkspace ws(sys, selection.active, WorkspaceOptionsOf(options));
-    rep.blocks = ws.blocks();
-    rep.blocks_solved = ws.blocks_solved();
+    auto ws = std::make_unique<KinematicsWorkspace>(sys, selection.active, WorkspaceOptionsOf(options));
+    rep.blocks = ws->blocks();
+    rep.blocks_solved = ws->blocks_solved();
     rep.stop = StopKind::AssemblyFailed;
-    if (!ContinueToStart(ws, model.analysis->start, solve, &s, &rep.assembly_iterations, &rep.message)) return rep;
+    if (!ContinueToStart(*ws, model.analysis->start, solve, &s, &rep.assembly_iterations, &rep.message)) return rep;
     rep.stop = StopKind::None;
-    Stepper(ws, options, selection, std::move(s)).Run(on_step, &rep);
+    Stepper(std::move(ws), options, selection, std::move(s)).Run(on_step, &rep);
   } catch (const std::exception& e) {
     rep.stop = StopKind::SolveFailed;
     rep.message = e.what();

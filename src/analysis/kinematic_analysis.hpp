@@ -52,12 +52,19 @@ struct StepDiagnostics {
 /// Why a run ended before its last row.
 enum class StopKind { None, Refused, AssemblyFailed, SingularPosition, SolveFailed, Interrupted };
 
+/// A change of the equations set aside along the motion (redundancy that follows it).
+struct Reselection {
+  double t = 0;
+  std::vector<std::string> set_aside;  // the equations set aside from t on
+};
+
 struct AnalysisReport {
   bool complete = false;
   StopKind stop = StopKind::None;
   std::optional<SingularPosition> singular;
   std::string message;                    // failure explanation (empty on success)
-  std::vector<std::string> set_aside;     // redundant equations, by name
+  std::vector<std::string> set_aside;     // redundant equations, by name (at the start)
+  std::vector<Reselection> reselections;  // later changes of that set
   std::vector<std::string> indeterminate_reactions;  // with forces and redundant equations
   std::vector<StepDiagnostics> steps;     // every row's, when options.keep_step_diagnostics
   int rows = 0;                           // rows delivered to the callback

@@ -1,5 +1,7 @@
 #include "analysis/row_selection.hpp"
 
+#include <Eigen/QR>
+
 #include "kinematics/position.hpp"
 #include "kinematics/sparse_rank.hpp"
 #include "mobility/mobility.hpp"
@@ -8,6 +10,19 @@ namespace mechkin {
 
 // Greedy independence threshold on the scaled rows (relative norm of the new direction).
 constexpr double kRowIndependence = 1e-7;
+
+namespace {
+
+void NameSetAside(const ConstraintSystem& sys, RowSelection* sel) {
+  for (int row : sel->set_aside) {
+    if (row >= sys.num_joint_rows()) sel->conflicting_drivers.push_back(sys.SourceName(row));
+    else sel->set_aside_names.push_back(sys.DescribeRow(row));
+  }
+  sel->set_aside_scales = RowScales(sys, sel->set_aside);
+}
+
+}  // namespace
+
 
 RowSelection SelectRows(const ConstraintSystem& sys, const SystemState& s) {
   RowSelection sel;
@@ -23,11 +38,31 @@ RowSelection SelectRows(const ConstraintSystem& sys, const SystemState& s) {
       sel.active = AllRows(sys);
     }
   }
-  for (int row : sel.set_aside) {
-    if (row >= sys.num_joint_rows()) sel.conflicting_drivers.push_back(sys.SourceName(row));
-    else sel.set_aside_names.push_back(sys.DescribeRow(row));
+  NameSetAside(sys, &sel);
+  return sel;
+}
+
+RowSelection SelectWellConditionedRows(const ConstraintSystem& sys, const SystemState& s) {
+  RowSelection sel;
+  const Eigen::MatrixXd J = ScaledJacobian(sys, s);
+  const int n = static_cast<int>(J.cols()), joints = sys.num_joint_rows(), drivers = sys.num_rows() - joints;
+  // Drivers are the prescription: project the joint rows onto the complement of their span.
+  const Eigen::MatrixXd D = J.bottomRows(drivers);
+  Eigen::MatrixXd Jj = J.topRows(joints);
+  if (drivers > 0) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> dq(D.transpose());
+    const Eigen::MatrixXd Q1 = dq.householderQ() * Eigen::MatrixXd::Identity(n, drivers);
+    Jj -= (Jj * Q1) * Q1.transpose();
   }
-  sel.set_aside_scales = RowScales(sys, sel.set_aside);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Jj.transpose());
+  qr.setThreshold(kRowIndependence);
+  const int need = n - drivers;
+  if (qr.rank() < need) return sel;  // the full system is singular here: nothing better to choose
+  std::vector<char> chosen(sys.num_rows(), 0);
+  for (int k = 0; k < need; ++k) chosen[qr.colsPermutation().indices()[k]] = 1;
+  for (int r = joints; r < sys.num_rows(); ++r) chosen[r] = 1;
+  for (int r = 0; r < sys.num_rows(); ++r) (chosen[r] ? sel.active : sel.set_aside).push_back(r);
+  NameSetAside(sys, &sel);
   return sel;
 }
 

@@ -21,6 +21,11 @@ struct RowSelection {
 
 /// Selects the rows at the assembled pose `s`.
 RowSelection SelectRows(const ConstraintSystem& sys, const SystemState& s);
+/// The best-conditioned independent set at pose `s` (for redundancy that follows
+/// the motion): every driver row, then the joint rows a column-pivoted QR picks
+/// first in the complement of the drivers' span (scaled Jacobian). Empty `active`
+/// when the joints and drivers together no longer have rank 6n there.
+RowSelection SelectWellConditionedRows(const ConstraintSystem& sys, const SystemState& s);
 /// Empty when the selection drives the mechanism fully; otherwise why the run
 /// must refuse (over-driven: the conflicting drivers; under-driven: the freedoms).
 std::string DrivingRefusal(const ConstraintSystem& sys, const RowSelection& selection);

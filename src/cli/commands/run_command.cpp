@@ -190,6 +190,16 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   if (rep.set_aside.size() > kListedSetAside)
     err << "mechkin run: ... and " << rep.set_aside.size() - kListedSetAside
         << " more redundant equations set aside (mechkin check lists them all)\n";
+  // Redundancy that follows the motion: each change of the set-aside equations.
+  for (size_t k = 0; k < rep.reselections.size() && k < kListedSetAside; ++k) {
+    const Reselection& r = rep.reselections[k];
+    err << "mechkin run: at t = " << r.t << " s the equations set aside became the better-conditioned set:";
+    for (size_t i = 0; i < r.set_aside.size() && i < 6; ++i) err << (i ? "; " : " ") << r.set_aside[i];
+    if (r.set_aside.size() > 6) err << "; ... (" << r.set_aside.size() << " in all)";
+    err << "\n";
+  }
+  if (rep.reselections.size() > kListedSetAside)
+    err << "mechkin run: ... and " << rep.reselections.size() - kListedSetAside << " more re-selections\n";
   if (!rep.indeterminate_reactions.empty()) {
     err << "mechkin run: overconstrained: these reaction components are not determined by the motion and the loads "
            "(the table gives the minimum-norm solution; driver efforts are exact); make the joints determinate as "
