@@ -107,6 +107,27 @@ class ConditioningWatch {
   double worst_[kMaxOrder + 1] = {0, 0, 0, 0, 0};
 };
 
+// The equations set aside at the start and their changes along the motion.
+// Large overconstrained models set aside thousands of rows: name the first ones, count the rest.
+void ReportSetAside(const AnalysisReport& rep, std::ostream& err) {
+  constexpr size_t kListedSetAside = 20;
+  for (size_t k = 0; k < rep.set_aside.size() && k < kListedSetAside; ++k)
+    err << "mechkin run: redundant equation set aside: " << rep.set_aside[k] << "\n";
+  if (rep.set_aside.size() > kListedSetAside)
+    err << "mechkin run: ... and " << rep.set_aside.size() - kListedSetAside
+        << " more redundant equations set aside (mechkin check lists them all)\n";
+  // Redundancy that follows the motion: each change of the set-aside equations.
+  for (size_t k = 0; k < rep.reselections.size() && k < kListedSetAside; ++k) {
+    const Reselection& r = rep.reselections[k];
+    err << "mechkin run: at t = " << r.t << " s the equations set aside became the better-conditioned set:";
+    for (size_t i = 0; i < r.set_aside.size() && i < 6; ++i) err << (i ? "; " : " ") << r.set_aside[i];
+    if (r.set_aside.size() > 6) err << "; ... (" << r.set_aside.size() << " in all)";
+    err << "\n";
+  }
+  if (rep.reselections.size() > kListedSetAside)
+    err << "mechkin run: ... and " << rep.reselections.size() - kListedSetAside << " more re-selections\n";
+}
+
 AnalysisOptions AnalysisOptionsOf(const RunOptions& o, const Model& model, const MotionLayout& layout) {
   AnalysisOptions a;
   a.order = o.order;
@@ -183,23 +204,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   });
   const bool rows_written = rows_out.Drain();
   progress.Clear();
-  // Large overconstrained models set aside thousands of rows: name the first ones, count the rest.
-  constexpr size_t kListedSetAside = 20;
-  for (size_t k = 0; k < rep.set_aside.size() && k < kListedSetAside; ++k)
-    err << "mechkin run: redundant equation set aside: " << rep.set_aside[k] << "\n";
-  if (rep.set_aside.size() > kListedSetAside)
-    err << "mechkin run: ... and " << rep.set_aside.size() - kListedSetAside
-        << " more redundant equations set aside (mechkin check lists them all)\n";
-  // Redundancy that follows the motion: each change of the set-aside equations.
-  for (size_t k = 0; k < rep.reselections.size() && k < kListedSetAside; ++k) {
-    const Reselection& r = rep.reselections[k];
-    err << "mechkin run: at t = " << r.t << " s the equations set aside became the better-conditioned set:";
-    for (size_t i = 0; i < r.set_aside.size() && i < 6; ++i) err << (i ? "; " : " ") << r.set_aside[i];
-    if (r.set_aside.size() > 6) err << "; ... (" << r.set_aside.size() << " in all)";
-    err << "\n";
-  }
-  if (rep.reselections.size() > kListedSetAside)
-    err << "mechkin run: ... and " << rep.reselections.size() - kListedSetAside << " more re-selections\n";
+  ReportSetAside(rep, err);
   if (!rep.indeterminate_reactions.empty()) {
     err << "mechkin run: overconstrained: these reaction components are not determined by the motion and the loads "
            "(the table gives the minimum-norm solution; driver efforts are exact); make the joints determinate as "
