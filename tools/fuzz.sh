@@ -3,13 +3,19 @@
 # and runs each for SECONDS (default 30). Crashing inputs are written to
 # build-fuzz/crash-*; the corpora are seeded with the bundled mechanisms and the
 # invalid-file corpus. A crash makes libFuzzer exit non-zero: the script fails.
-# Usage: tools/fuzz.sh [SECONDS]
+# Usage: tools/fuzz.sh [SECONDS] [BUILD_DIR]
+# BUILD_DIR: an existing clang build configured with -DMECHKIN_FUZZ=ON (tools/test.sh
+# passes its sanitizer build, so the library is compiled once for both).
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 secs="${1:-30}"
-out="$here/build-fuzz"
-cmake -S "$here" -B "$out" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DMECHKIN_FUZZ=ON -DMECHKIN_SANITIZE=ON -DMECHKIN_BUILD_TESTS=OFF -DMECHKIN_BUILD_BENCHMARKS=OFF >/dev/null
+out="${2:-$here/build-fuzz}"
+case "$out" in /*) ;; *) out="$here/$out" ;; esac
+if [ -z "${2:-}" ]; then
+  cmake -S "$here" -B "$out" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DMECHKIN_FUZZ=ON -DMECHKIN_SANITIZE=ON -DMECHKIN_BUILD_TESTS=OFF -DMECHKIN_BUILD_BENCHMARKS=OFF \
+    -DMECHKIN_BUILD_PYTHON=OFF >/dev/null
+fi
 cmake --build "$out" -j"$(nproc)" --target fuzz_loader fuzz_expression fuzz_check >/dev/null
 mkdir -p "$out/corpus-loader" "$out/corpus-check" "$out/corpus-expression"
 cp "$here"/mechanisms/*.json "$here"/tests/invalid/*.json "$out/corpus-loader/" 2>/dev/null || true

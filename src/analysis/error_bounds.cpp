@@ -15,4 +15,13 @@ void CalcErrorBounds(double condition, double residual, int max_order, double* b
   }
 }
 
+double ResidualForAccuracy(double tolerance, double condition, int order) {
+  // No residual below the round-off floor 16u is reachable; asking for one would
+  // only spend iterations that cannot halve it.
+  const double floor = 16 * std::numeric_limits<double>::epsilon() / 2;
+  const double k = std::max(condition, 1.0);
+  // Half the tolerance: the other half is left to the back-solves' own round-off 8u·κ^k.
+  return std::max(floor, order >= 1 ? 0.5 * tolerance / (k * k) : 0.5 * tolerance / k);
+}
+
 }  // namespace mechkin

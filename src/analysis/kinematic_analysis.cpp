@@ -64,6 +64,9 @@ WorkspaceOptions WorkspaceOptionsOf(const AnalysisOptions& o) {
 // (dimensionless) exceeds this, look for a better-conditioned set (bundled
 // mechanisms stay below 40 over their whole motion).
 constexpr double kReselectCondition = 100;
+// Above this condition no residual makes the derivatives' bound meet a tolerance
+// (u·κ² ≥ 1e-8): the row reports its bound instead of polishing.
+constexpr double kMaxPolishCondition = 1e4;
 constexpr double kReselectGain = 4;  // ... and switch when that set is this much better
 constexpr double kWellConditionedRows = 1e4;  // 1-norm condition a new set must stay below
 constexpr int kMaxReselectColumns = 1200;  // 200 bodies: the dense QR of the selection
@@ -95,7 +98,7 @@ class Stepper {
 
  private:
   enum class Outcome { Ok, Failed, Suspect };
-  Outcome Attempt(double t, double dt, bool reuse);
+  Outcome Attempt(double t, double dt, bool reuse, bool polish = true);
   Outcome Refine(double t, StepDiagnostics* diag, double* bad_t);
   void FinishDiagnostics(StepDiagnostics* diag);
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
@@ -110,6 +113,7 @@ class Stepper {
   SystemState s_, prev_, predicted_, good_;
   SolveSummary last_;
   double prev_sign_ = 0;
+  double last_condition_ = 1;  // the previous row's condition estimate
   bool have_sign_ = false;
   Eigen::VectorXd phi_;
   std::unique_ptr<ForceSolver> forces_;
@@ -120,11 +124,18 @@ class Stepper {
 // Suspect: det Φ_q changed sign, or the solution is far (> 0.1 L or rad) from the
 // prediction — the marks of a jump to another assembly branch or of a singular
 // position between the two times.
-Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse) {
+Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) {
   EvalDriverFunctions(model_, t, &s_);
   AimRotationDrivers(ws_->system(), &s_);
   if (dt > 0 && predictor_ > 0) PredictPose(dt, predictor_, &s_);
   predicted_.bodies = s_.bodies;
+  // The tolerance is on the answer too: the derivatives need κ² times less residual
+  // (error_bounds.hpp). Not in the sub-steps that bracket a singular position
+  // (Refine), where the pose must follow the plain continuation the bisection expects,
+  // nor where no residual would do (κ ≥ 1e4).
+  solve_.target = polish && last_condition_ < kMaxPolishCondition
+                      ? ResidualForAccuracy(options_.tolerance, last_condition_, options_.order)
+                      : 0;
   last_ = SolvePosition(*ws_, solve_, &s_, reuse && options_.modified_newton);
   if (!last_.success) return Outcome::Failed;
   const double sign = ws_->factorization().Sign();
@@ -150,7 +161,7 @@ Stepper::Outcome Stepper::Refine(double t, StepDiagnostics* diag, double* bad_t)
     good_ = prev_;
     for (int i = 1; i <= parts; ++i) {
       const double ti = prev_.t + (t - prev_.t) * i / parts;
-      out = Attempt(ti, (t - prev_.t) / parts, true);
+      out = Attempt(ti, (t - prev_.t) / parts, true, /*polish=*/false);
       diag->iterations += last_.iterations;
       if (out != Outcome::Ok) { *bad_t = ti; break; }
       UpdateAngleReferences(ws_->system(), &s_);
@@ -169,6 +180,7 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
     diag->set_aside_residual = ScaledResidual(phi_, selection_.set_aside, selection_.set_aside_scales);
   }
   diag->condition = ws_->factorization().ConditionEstimate();
+  last_condition_ = diag->condition;
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
 }
 

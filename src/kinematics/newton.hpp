@@ -51,6 +51,8 @@ class NewtonSolver : public Factorization {
   double ConditionEstimate() override;
 
  private:
+  void RefineToTarget(const SolveOptions& options, SystemState* s, SolveSummary* sum);
+
   const ConstraintSystem& sys_;
   std::vector<int> rows_;
   Eigen::VectorXd scales_;

@@ -19,6 +19,9 @@ namespace mechkin {
 struct SolveOptions {
   double tolerance = 1e-10;  // on the scaled residual (relative to the mechanism size)
   int max_iterations = 50;
+  // Full-system Newton only: after meeting `tolerance`, up to two more iterations
+  // with the factorization held toward this residual (never a failure); 0 = none.
+  double target = 0;
 };
 
 struct SolveSummary {

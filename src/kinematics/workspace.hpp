@@ -65,6 +65,12 @@ class KinematicsWorkspace {
 /// Φ(q, t) = 0 from the state's current pose (driver values evaluated at t), then
 /// factorizes Φ_q at the solution. `reuse`: modified Newton with the held factors.
 SolveSummary SolvePosition(KinematicsWorkspace& ws, const SolveOptions& options, SystemState* s, bool reuse);
+/// Up to two more Newton iterations from a solved pose toward the scaled residual
+/// `target` (stopping at round-off), then a fresh factorization at the final pose:
+/// for when the residual met its tolerance but the derivatives' error bound
+/// (κ²·r, analysis/error_bounds.hpp) does not. Full-system Newton path only; elsewhere a no-op
+/// (returns success = false).
+SolveSummary PolishPosition(KinematicsWorkspace& ws, double target, SystemState* s);
 /// Velocity … up to `order` at the current (factorized) pose, one back-solve per order.
 void SolveDerivatives(KinematicsWorkspace& ws, int order, SystemState* s);
 /// Φ_qᵀ x = b over the active rows with the step's factorization.

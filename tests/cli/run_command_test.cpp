@@ -127,5 +127,24 @@ TEST(RunCommand, InvalidFileExitsOneAndWritesNothing) {
   EXPECT_FALSE(std::ifstream(o.output).good());
 }
 
+// Near a dead centre the step solves to the residual the derivatives need; where the
+// conditioning still costs digits, run says which orders and when (once each), and
+// the well-conditioned bundled mechanisms say nothing.
+TEST(RunCommand, NotesWhereTheBoundExceedsTheTolerance) {
+  RunOptions o;
+  o.file = kSrc + "/tests/data/piston-driven-slider-crank.json";
+  o.order = 3;
+  std::ostringstream out, err;
+  ASSERT_EQ(RunRun(o, out, err), 0) << err.str();
+  EXPECT_NE(err.str().find("note: the jerk error bound exceeds 10 x --tol 1e-10 from t = "), std::string::npos) << err.str();
+  EXPECT_EQ(err.str().find("note: the position"), std::string::npos) << err.str();
+  RunOptions plain;
+  plain.file = kSrc + "/mechanisms/planar-four-bar.json";
+  plain.order = 3;
+  std::ostringstream out2, err2;
+  ASSERT_EQ(RunRun(plain, out2, err2), 0);
+  EXPECT_EQ(err2.str().find("note:"), std::string::npos) << err2.str();
+}
+
 }  // namespace
 }  // namespace mechkin

@@ -127,7 +127,9 @@ TEST(NearSingular, DeadCentreApproachStaysWithinTheBound) {
     for (int k = 0; k < 3; ++k) {
       const double err = std::abs(last[Col(r, names[k])] - want[k]) / scale[k];
       EXPECT_LE(err, last[Col(r, bounds[k])] + 1e-15) << "delta " << delta << " order " << k;
-      if (delta == 1e-3) EXPECT_LT(err, 1e-8) << "order " << k;
+      // Far enough away the results are accurate in absolute terms: at κ ≈ 1e4 the
+      // round-off floor of order k is 8u·κ^k (9e-8 for the acceleration).
+      if (delta == 1e-3) EXPECT_LT(err, k < 2 ? 1e-10 : 5e-8) << "order " << k;
     }
   }
 }
