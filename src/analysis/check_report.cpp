@@ -52,6 +52,14 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   r.grubler = CalcGrublerCount(m);
   r.dof_after_drivers_count = r.grubler - r.drivers;
   r.mobility = CalcMobility(m);
+  if (r.mobility->singular_lost > 0)
+    r.warnings.push_back({"/drivers",
+                          "the design pose is a singular position of the driven mechanism: the drivers control " +
+                              std::to_string(r.mobility->singular_lost) +
+                              " fewer direction(s) there than at nearby poses, so `run` cannot start there",
+                          "move the design pose off it (change a joint angle or a leg length slightly)"});
+  if (r.mobility->locked)
+    r.warnings.push_back({"/joints", r.mobility->verdict, "fix the joints before adding or removing drivers"});
   AddExpectations(m, &r);
   return r;
 }

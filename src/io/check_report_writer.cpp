@@ -49,6 +49,10 @@ json MobilityJson(const MobilityReport& r, int drivers) {
   j["remaining_freedoms"] = r.remaining_freedoms;
   j["verdict"] = r.verdict;
   j["suggestions"] = r.suggestions;
+  j["locked"] = r.locked;
+  j["locking_joints"] = r.locking_joints;
+  j["singular_design_pose"] = r.singular_lost > 0;
+  j["singular_directions"] = r.singular_directions;
   return j;
 }
 
@@ -82,8 +86,16 @@ void PrintMobility(const MobilityReport& m, int drivers, std::ostream& out) {
     for (size_t k = 0; k < m.conflicting_drivers.size(); ++k) out << (k ? ", " : "") << m.conflicting_drivers[k];
     out << ")";
   }
+  if (m.locked && !m.conflicting_drivers.empty()) out << " — a consequence: the joints already lock the mechanism";
   out << "\n";
   for (const auto& f : m.remaining_freedoms) out << "    - " << f << "\n";
+  if (m.singular_lost > 0) {
+    out << "  design pose: a singular position of the driven mechanism — the drivers control " << m.singular_lost
+        << " fewer direction" << (m.singular_lost == 1 ? "" : "s") << " here than at nearby poses (the driving status above is "
+        << "that of a nearby pose):\n";
+    for (const auto& d : m.singular_directions) out << "    - " << d << "\n";
+    out << "  The run starts at the design pose: move it off the singular position.\n";
+  }
 }
 
 void PrintErrors(const CheckReport& r, std::ostream& out) {

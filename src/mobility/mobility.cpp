@@ -311,6 +311,72 @@ void ClassifyDriving(const Model& model, const std::function<Eigen::MatrixXd()>&
 }
 
 
+// Mobility 0 from the joints: name the joints whose removal alone frees the
+// mechanism (dense path; up to 60 joints, one rank each).
+void FindLockingJoints(const Model& model, MobilityReport* rep) {
+  if (model.joints.size() > 60) return;
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    Model without = model;
+    without.joints.erase(without.joints.begin() + static_cast<long>(j));
+    if (QuickMobility(without).first > 0) rep->locking_joints.push_back(model.joints[j].name);
+  }
+}
+
+// Directions of a null basis in words: the bodies each moves most.
+std::vector<std::string> DescribeMotions(const Model& model, const Eigen::MatrixXd& basis, int count) {
+  std::vector<std::string> out;
+  for (int c = 0; c < basis.cols() && static_cast<int>(out.size()) < count; ++c) {
+    std::vector<std::pair<double, int>> mv;
+    for (int b = 0; b < model.num_bodies(); ++b) mv.emplace_back(basis.col(c).segment<6>(6 * b).norm(), b);
+    std::sort(mv.rbegin(), mv.rend());
+    std::string s = "a small motion of ";
+    int listed = 0;
+    for (const auto& [mag, b] : mv)
+      if (mag > 1e-6 && listed < 4) s += (listed++ ? ", `" : "`") + model.bodies[b].name + "`";
+    const int b0 = mv.front().second;
+    Vec3 w = basis.col(c).segment<3>(6 * b0 + 3);
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(w[k]) < 1e-9 * w.norm()) w[k] = 0;  // round-off, not a direction
+    if (w.norm() > 0.5 * basis.col(c).segment<6>(6 * b0).norm())
+      s += " (turning about " + VecStr(w.normalized()) + " in its body axes)";
+    out.push_back(s + " is not controlled by the drivers here");
+  }
+  return out;
+}
+
+// A design pose that is itself singular: the joints and drivers together lose rank
+// there but not at nearby poses along the joints' free motion (three random tries,
+// the best kept). Returns the nearby pose in *generic (joints assembled), or false.
+bool FindRegularDrivenPose(const Model& model, const ConstraintSystem& joints, const ConstraintSystem& full,
+                           const SystemState& design, const RankInfo& joint_info, int design_full_rank,
+                           SystemState* generic) {
+  if (joint_info.null_basis.cols() == 0) return false;
+  std::mt19937 rng(4242);
+  std::normal_distribution<double> nd;
+  const double L = model.characteristic_length;
+  int best = design_full_rank;
+  for (int trial = 0; trial < 3; ++trial) {
+    SystemState moved = design;
+    Eigen::VectorXd c(joint_info.null_basis.cols());
+    for (int k = 0; k < c.size(); ++k) c[k] = nd(rng);
+    Eigen::VectorXd dq = joint_info.null_basis * c.normalized() * 0.05;
+    for (int b = 0; b < model.num_bodies(); ++b) dq.segment<3>(6 * b) *= L;
+    ApplyStep(dq, &moved);
+    SolveOptions opt;
+    opt.max_iterations = 100;
+    if (!AssembleMinNorm(joints, AllRows(joints), opt, &moved).success) continue;
+    SystemState fstate(full);
+    fstate.bodies = moved.bodies;
+    fstate.angle_ref.assign(full.entries().size(), 0.0);
+    const int rank = CalcRank(ScaledJacobian(full, fstate)).rank;
+    if (rank > best) {
+      best = rank;
+      *generic = moved;
+    }
+  }
+  return best > design_full_rank;
+}
+
 // Redundant rows from the sparse QR, each with the joints whose rows combine to it
 // (named for the first kMaxNamedRedundant; the count is always exact).
 void NameRedundantEquationsSparse(const ConstraintSystem& joints, const SparseRowRank& jr, MobilityReport* rep) {
@@ -419,10 +485,36 @@ MobilityReport CalcMobility(const Model& model) {
   // The redundant rows by the same greedy file-order rule as the large-model path:
   // one sparse QR names every row and its combination (a dense pass is O(m²n)).
   if (rep.redundant > 0) NameRedundantEquationsSparse(joints, SparseRowRank(ScaledJacobian(joints, state).sparseView()), &rep);
-  const Eigen::MatrixXd Jf = DrivingRank(model, full, state, info.rank, &rep);
+  Eigen::MatrixXd Jf = DrivingRank(model, full, state, info.rank, &rep);
+  if (rep.dof_after_drivers > std::max(0, rep.mobility - static_cast<int>(model.drivers.size())) ||
+      !rep.conflicting_drivers.empty()) {
+    // More freedoms left (or drivers in conflict) than the counts imply: is it the pose?
+    SystemState generic(joints);
+    if (FindRegularDrivenPose(model, joints, full, state, info, 6 * n - rep.dof_after_drivers, &generic)) {
+      const int design_rank = 6 * n - rep.dof_after_drivers;
+      const RankInfo design_full = CalcRank(Jf);
+      rep.conflicting_drivers.clear();
+      rep.remaining_freedoms.clear();
+      Jf = DrivingRank(model, full, generic, info.rank, &rep);
+      rep.singular_lost = 6 * n - rep.dof_after_drivers - design_rank;
+      rep.singular_directions = DescribeMotions(model, design_full.null_basis, rep.singular_lost);
+      state = generic;
+    }
+  }
   FindIdleFreedoms(model, state, Jf.sparseView(), &rep);
   ClassifyDriving(model, [&] { return CalcRank(Jf).null_basis; }, &rep);
-  if (rep.redundant > 0) {
+  if (rep.mobility == 0 && n > 0) {
+    // The joints alone lock it: say so before any talk of conflicting drivers.
+    rep.locked = true;
+    FindLockingJoints(model, &rep);
+    rep.verdict = "locked by the joints: they allow no motion (mobility 0) before any driver";
+    if (!rep.locking_joints.empty()) {
+      rep.verdict += "; removing any one of ";
+      for (size_t k = 0; k < rep.locking_joints.size(); ++k) rep.verdict += (k ? ", `" : "`") + rep.locking_joints[k] + "`";
+      rep.verdict += " would free it — check their axes and positions";
+    }
+    if (rep.redundant > 0) rep.verdict_kind = MobilityVerdict::Overconstrained;
+  } else if (rep.redundant > 0) {
     const std::string suggestion = SuggestRemoval(model, rep);
     if (!suggestion.empty()) rep.suggestions.push_back(suggestion);
     SetOverconstrainedVerdict(&rep);

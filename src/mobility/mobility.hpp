@@ -59,6 +59,17 @@ struct MobilityReport {
   MobilityVerdict verdict_kind = MobilityVerdict::Regular;
   std::string verdict;  // the verdict in words (empty when regular)
   std::vector<std::string> suggestions;
+  /// Mobility 0 from the joints alone: the joints lock the mechanism before any
+  /// driver (then "conflicting drivers" is a consequence, not the cause). The
+  /// joints whose removal alone frees it are named.
+  bool locked = false;
+  std::vector<std::string> locking_joints;
+  /// The design pose is a singular position of the driven mechanism: the drivers
+  /// control `singular_lost` fewer directions there than at nearby poses of the
+  /// joints' free motion. The driving analysis above is then that of a nearby
+  /// regular pose; `singular_directions` describes the directions lost.
+  int singular_lost = 0;
+  std::vector<std::string> singular_directions;
 };
 
 /// The mobility analysis; models with more than 200 bodies take the sparse path.

@@ -1,0 +1,67 @@
+// Diagnoses that send the user the right way (issue "Right at every order", item 6):
+// joints that lock the mechanism are named before any talk of conflicting drivers,
+// and a design pose that is itself singular is called that, with the direction lost.
+#include <gtest/gtest.h>
+
+#include <glob.h>
+#include <nlohmann/json.hpp>
+
+#include "analysis/kinematic_analysis.hpp"
+#include "mobility/mobility.hpp"
+#include "../test_files.hpp"
+
+namespace mechkin {
+namespace {
+
+AnalysisReport RunQuietly(const Model& m) {
+  return RunKinematicAnalysis(m, AnalysisOptions{}, [](const SystemState&, const StepDiagnostics&) { return true; });
+}
+
+// The planar four-bar with one axis mistyped (B about y instead of z): a spatial 4R
+// loop that cannot move at all.
+TEST(Diagnoses, JointsThatLockTheMechanismAreNamed) {
+  nlohmann::json j = testing_files::ReadJson("planar-four-bar.json");
+  j["joints"][1]["axis"] = {0, 1, 0};
+  j.erase("expect");
+  const Model m = testing_files::FromJson(j);
+  const MobilityReport r = CalcMobility(m);
+  EXPECT_EQ(r.mobility, 0);
+  EXPECT_TRUE(r.locked);
+  EXPECT_EQ(r.locking_joints, (std::vector<std::string>{"A", "B", "C", "D"}));
+  EXPECT_NE(r.verdict.find("locked by the joints"), std::string::npos) << r.verdict;
+  const AnalysisReport run = RunQuietly(m);
+  EXPECT_EQ(run.stop, StopKind::Refused);
+  EXPECT_NE(run.message.find("locked by the joints"), std::string::npos) << run.message;
+  EXPECT_NE(run.message.find("`B`"), std::string::npos) << run.message;
+  EXPECT_EQ(run.message.find("over-driven"), std::string::npos) << run.message;
+}
+
+// Every leg in a radial plane: the legs cannot resist a turn about the centre line
+// at the design pose; a little away they drive the platform fully.
+TEST(Diagnoses, ASingularDesignPoseIsCalledThat) {
+  const Model m = testing_files::FromJson(testing_files::ReadTestData("stewart-singular-design-pose.json"));
+  const MobilityReport r = CalcMobility(m);
+  EXPECT_EQ(r.singular_lost, 1);
+  ASSERT_EQ(r.singular_directions.size(), 1u);
+  EXPECT_NE(r.singular_directions[0].find("turning about [0, 0, 1]"), std::string::npos) << r.singular_directions[0];
+  EXPECT_TRUE(r.conflicting_drivers.empty());
+  EXPECT_EQ(r.driving_status, DrivingStatus::Full);
+  const AnalysisReport run = RunQuietly(m);
+  EXPECT_EQ(run.stop, StopKind::Refused);
+  EXPECT_NE(run.message.find("the design pose is a singular position"), std::string::npos) << run.message;
+  EXPECT_EQ(run.message.find("conflict"), std::string::npos) << run.message;
+}
+
+TEST(Diagnoses, RegularMechanismsGetNeither) {
+  glob_t g;
+  ASSERT_EQ(glob((std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/*.json").c_str(), 0, nullptr, &g), 0);
+  for (size_t k = 0; k < g.gl_pathc; ++k) {
+    const MobilityReport r = CalcMobility(*LoadMechanismFile(g.gl_pathv[k]).model);
+    EXPECT_FALSE(r.locked) << g.gl_pathv[k];
+    EXPECT_EQ(r.singular_lost, 0) << g.gl_pathv[k];
+  }
+  globfree(&g);
+}
+
+}  // namespace
+}  // namespace mechkin
