@@ -403,8 +403,10 @@ void ExpectConforms(const Errors& e) {
   EXPECT_LT(e.phi, 1e-12);
   EXPECT_LT(e.jac, 1e-7);
   EXPECT_LT(e.jac_p, 1e-7);
-  EXPECT_LT(e.rhs_w, 1e-8);  // the issue asks for 1e-6; near-parallel DOT_1 loses ~3 digits to cancellation
-  EXPECT_LT(e.rhs_p, 1e-8);
+  // The issue asks for 1e-6; near-parallel DOT_1 loses ~3 digits to cancellation
+  // (1.04e-8 seen with clang, below 1e-8 with g++: the order of the sums).
+  EXPECT_LT(e.rhs_w, 1e-7);
+  EXPECT_LT(e.rhs_p, 1e-7);
   EXPECT_LT(e.kappa, 1e-6);
 }
 
