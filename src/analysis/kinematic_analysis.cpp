@@ -251,6 +251,13 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
     if (out != Outcome::Ok) {
       rep->stop = StopKind::SolveFailed;
       rep->message = SolveFailureMessage(*ws_, s_, t, rep->rows, last_.message);
+      if (step > 0 && bad_t > good_.t && !ws_->block_solver()) {
+        // The drivers ask for more than the branch gives: locate where it ends.
+        const LimitOfMotion lim = LocateLimit(*ws_, good_, good_.t, bad_t, 1e-9 * (t - prev_.t) / 1024,
+                                              std::max(predictor_, 1));
+        rep->message = LimitMessage(model_, lim, rep->rows) + "\n  " + rep->message;
+        rep->limit = lim;
+      }
       return;
     }
     FinishDiagnostics(&diag);

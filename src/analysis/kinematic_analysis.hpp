@@ -62,6 +62,7 @@ struct AnalysisReport {
   bool complete = false;
   StopKind stop = StopKind::None;
   std::optional<SingularPosition> singular;
+  std::optional<LimitOfMotion> limit;     // where the position solve fails: the fold located
   std::string message;                    // failure explanation (empty on success)
   std::vector<std::string> set_aside;     // redundant equations, by name (at the start)
   std::vector<Reselection> reselections;  // later changes of that set

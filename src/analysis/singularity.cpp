@@ -88,6 +88,90 @@ SingularPosition LocateSingularity(KinematicsWorkspace& ws, const SystemState& b
   return sp;
 }
 
+namespace {
+
+// A tight solve from the Taylor prediction off `base` at time t (the run's branch).
+bool ProbeFrom(KinematicsWorkspace& ws, const SystemState& base, double t, int predictor_order, SystemState* probe) {
+  const ConstraintSystem& sys = ws.system();
+  SolveOptions tight;
+  tight.tolerance = 1e-13;
+  tight.max_iterations = 100;
+  *probe = base;
+  PredictPose(t - base.t, predictor_order, probe);
+  EvalDriverFunctions(sys.model(), t, probe);
+  AimRotationDrivers(sys, probe);
+  return ws.newton().Solve(tight, probe).success;
+}
+
+// The pose as one vector (r and p of every body) for the fold fit.
+Eigen::VectorXd PoseVector(const SystemState& s) {
+  Eigen::VectorXd v(7 * s.bodies.size());
+  for (size_t b = 0; b < s.bodies.size(); ++b) v.segment<7>(7 * b) << s.bodies[b].r[0], s.bodies[b].p;
+  return v;
+}
+
+}  // namespace
+
+LimitOfMotion LocateLimit(KinematicsWorkspace& ws, const SystemState& base, double t_lo, double t_hi,
+                          double resolution, int predictor_order) {
+  SystemState probe = base, s_lo = base;
+  while (t_hi - t_lo > resolution) {
+    const double mid = 0.5 * (t_lo + t_hi);
+    if (ProbeFrom(ws, base, mid, predictor_order, &probe)) {
+      t_lo = mid;
+      s_lo = probe;
+    } else {
+      t_hi = mid;
+    }
+  }
+  LimitOfMotion lim;
+  lim.t = t_lo;
+  // The fold: three solutions approaching it, t as a parabola in the coordinate moving most.
+  const double delta = 1e-6 * (t_hi - base.t);
+  const double ts[3] = {t_lo - delta, t_lo - 0.25 * delta, t_lo};
+  Eigen::VectorXd x[3];
+  bool ok = t_lo - delta > base.t;
+  for (int k = 0; k < 2 && ok; ++k) {
+    ok = ProbeFrom(ws, base, ts[k], predictor_order, &probe);
+    x[k] = PoseVector(probe);
+  }
+  if (ok) {
+    x[2] = PoseVector(s_lo);
+    int c = 0;
+    (x[2] - x[0]).cwiseAbs().maxCoeff(&c);
+    const double x0 = x[0][c], x1 = x[1][c], x2 = x[2][c];
+    // Divided differences: t = ts0 + d1 (x − x0) + d2 (x − x0)(x − x1).
+    const double d01 = (ts[1] - ts[0]) / (x1 - x0), d12 = (ts[2] - ts[1]) / (x2 - x1), d2 = (d12 - d01) / (x2 - x0);
+    const double xv = 0.5 * (x0 + x1) - d01 / (2 * d2);  // dt/dx = 0
+    const double tv = ts[0] + d01 * (xv - x0) + d2 * (xv - x0) * (xv - x1);
+    if (std::isfinite(tv) && d2 != 0 && tv >= t_lo - delta && tv <= t_hi + delta) {
+      lim.t = tv;
+      lim.fold = true;
+    }
+  }
+  EvalDriverFunctions(ws.system().model(), lim.t, &s_lo);
+  for (const Jet& j : s_lo.driver_values) lim.driver_values.push_back(j.c[0]);
+  return lim;
+}
+
+std::string LimitMessage(const Model& model, const LimitOfMotion& lim, int rows_done) {
+  std::ostringstream o;
+  o.precision(12);
+  o << "limit of motion at t = " << lim.t << " s after " << rows_done << " rows:";
+  for (size_t d = 0; d < model.drivers.size(); ++d) {
+    const bool angle = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation;
+    o << " driver `" << model.drivers[d].name << "` = "
+      << lim.driver_values[d] / (angle ? model.units.angle_to_si : model.units.length_to_si) << " "
+      << (angle ? model.units.angle_name : model.units.length_name) << (d + 1 < model.drivers.size() ? "," : "");
+  }
+  o << (lim.fold ? "\n  the branch folds there (a stroke end or a toggle of the driven output): the drivers "
+                   "cannot go further on it"
+                 : "\n  the drivers' values beyond it cannot be reached from the branch the run is on")
+    << "\n  Try: keep the drivers inside this range (mechkin runs what the mechanism can do up to here), or drive "
+       "another joint through this position.";
+  return o.str();
+}
+
 std::string SingularityMessage(const Model& model, const SingularPosition& sp) {
   std::ostringstream o;
   o.precision(12);

@@ -22,6 +22,21 @@ struct SingularPosition {
 /// prediction off `base`, so it follows the branch the run was on.
 SingularPosition LocateSingularity(KinematicsWorkspace& ws, const SystemState& base, double t_lo, double t_hi,
                                    double sign_lo, double resolution, int predictor_order);
+/// A limit of motion: the drivers ask for a pose the mechanism cannot reach (a
+/// stroke end, the toggle of a driven output). Where the branch folds, the pose
+/// moves like sqrt(t* − t), so t is a parabola in the coordinate moving most.
+struct LimitOfMotion {
+  double t = 0;                       // the fold (or the last solvable time when `fold` is false)
+  std::vector<double> driver_values;  // SI, at t
+  bool fold = false;                  // located as a fold of the branch (else: first unreachable time)
+};
+/// Bisection in time between t_lo (solvable from `base`) and t_hi (not) to
+/// `resolution`, then the vertex of t = a·x² + b·x + c through three solutions
+/// at t_lo, t_lo − δ/4 and t_lo − δ (δ = 1e-6 of t_hi − base.t).
+LimitOfMotion LocateLimit(KinematicsWorkspace& ws, const SystemState& base, double t_lo, double t_hi,
+                          double resolution, int predictor_order);
+/// "limit of motion at t = … s: driver `piston` = … mm cannot go further …".
+std::string LimitMessage(const Model& model, const LimitOfMotion& limit, int rows_done);
 /// "singular position at t = … s, driver `crank` = … deg …" with advice.
 std::string SingularityMessage(const Model& model, const SingularPosition& sp);
 /// Why the position solve failed at t: the worst residuals and σ_min of the scaled Φ_q.

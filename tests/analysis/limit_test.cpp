@@ -1,0 +1,42 @@
+// Limits of motion located exactly (issue "Right at every order", item 5): a
+// slider-crank whose piston is driven past its stroke end stops at the stroke end,
+// located to 1e-9 of the stroke, and says it is a limit of motion.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "analysis/kinematic_analysis.hpp"
+#include "../test_files.hpp"
+
+namespace mechkin {
+namespace {
+
+TEST(LimitOfMotion, PistonDrivenPastItsStrokeEnd) {
+  // tests/data/piston-driven-slider-crank.json: crank 20 mm, rod 50 mm, no offset,
+  // design crank angle 60°; the piston's largest reach is a + b = 70 mm from the crank pivot.
+  nlohmann::json j = testing_files::ReadTestData("piston-driven-slider-crank.json");
+  const double a = 20, b = 50, th0 = M_PI / 3;
+  const double x0 = a * std::cos(th0) + std::sqrt(b * b - a * a * std::sin(th0) * std::sin(th0));
+  const double overshoot = 70.5 - x0;  // the driver asks for 0.5 mm past the stroke end at t = 1
+  char fn[64];
+  std::snprintf(fn, sizeof fn, "%.17g*t", overshoot);
+  j["drivers"][0]["function"] = fn;
+  j["analysis"] = {{"start", 0}, {"end", 1}, {"steps", 100}};
+  const Model m = testing_files::FromJson(j);
+  int rows = 0;
+  const AnalysisReport rep =
+      RunKinematicAnalysis(m, AnalysisOptions{}, [&](const SystemState&, const StepDiagnostics&) { return ++rows > 0; });
+  ASSERT_FALSE(rep.complete);
+  ASSERT_TRUE(rep.limit.has_value()) << rep.message;
+  EXPECT_TRUE(rep.limit->fold);
+  const double stroke = 2 * a;
+  EXPECT_NEAR(rep.limit->driver_values[0], (70 - x0) * 1e-3, 1e-9 * stroke * 1e-3);  // SI
+  EXPECT_NEAR(rep.limit->t, (70 - x0) / overshoot, 1e-9);
+  EXPECT_EQ(rows, 97);  // rows up to t = 0.96 are kept
+  EXPECT_NE(rep.message.find("limit of motion at t = 0.96322405"), std::string::npos) << rep.message;
+  EXPECT_NE(rep.message.find("driver `piston` = 13.09584240"), std::string::npos) << rep.message;
+}
+
+}  // namespace
+}  // namespace mechkin
