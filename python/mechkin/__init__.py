@@ -146,6 +146,8 @@ class RunStop:
         self.kind = report["stop"]
         self.message = report["message"]
         self.singular = report["singular"]  # dict(t, driver_values, joint_mobility, involved) or None
+        # where a position solve failed: dict(t, driver_values (SI), fold) or None
+        self.limit = report.get("limit")
 
     def __bool__(self):
         return self.kind != "none"
@@ -197,6 +199,8 @@ class Motion:
     complete = property(lambda self: self._report["complete"])
     stop = property(lambda self: RunStop(self._report))
     set_aside = property(lambda self: list(self._report["set_aside"]), doc="redundant equations set aside")
+    reselections = property(lambda self: list(self._report.get("reselections", [])),
+                            doc="[(t, equations set aside from t on)]: redundancy that follows the motion")
     names = property(lambda self: [c["name"] for c in self.columns])
     t = property(lambda self: self.values[:, 0])
 

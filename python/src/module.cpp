@@ -237,6 +237,18 @@ py::dict Report(const PyMotion& pm) {
   } else {
     d["singular"] = py::none();
   }
+  if (m.report.limit) {
+    py::dict l;
+    l["t"] = m.report.limit->t;
+    l["driver_values"] = m.report.limit->driver_values;
+    l["fold"] = m.report.limit->fold;
+    d["limit"] = l;
+  } else {
+    d["limit"] = py::none();
+  }
+  py::list reselections;
+  for (const auto& r : m.report.reselections) reselections.append(py::make_tuple(r.t, r.set_aside));
+  d["reselections"] = reselections;
   d["set_aside"] = m.report.set_aside;
   d["indeterminate_reactions"] = m.report.indeterminate_reactions;
   d["assembly_iterations"] = m.report.assembly_iterations;

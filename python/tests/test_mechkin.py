@@ -156,6 +156,19 @@ def test_partial_run_returns_rows_and_a_typed_stop(cli, tmp_path, root):
     np.testing.assert_array_equal(values, motion.values)
 
 
+def test_a_limit_of_motion_and_reselections_reach_python(root):
+    # The piston driven 0.5 mm past the stroke end of a 20/50 mm slider-crank.
+    doc = json.load(open(os.path.join(root, "tests/data/piston-driven-slider-crank.json")))
+    x0 = 20 * np.cos(np.pi / 3) + np.sqrt(50 ** 2 - (20 * np.sin(np.pi / 3)) ** 2)
+    doc["drivers"][0]["function"] = "%.17g*t" % (70.5 - x0)
+    doc["analysis"] = {"start": 0, "end": 1, "steps": 100}
+    motion = mechkin.loads(doc).run()
+    assert not motion.complete and motion.stop.kind == "solve_failed"
+    assert motion.stop.limit["fold"]
+    assert abs(motion.stop.limit["driver_values"][0] - (70 - x0) * 1e-3) < 4e-11  # 1e-9 of the 40 mm stroke
+    assert motion.reselections == []
+
+
 def test_check_report_has_the_cli_json_fields(cli, root):
     path = os.path.join(root, "mechanisms/bennett-linkage.json")
     cli_report = json.loads(subprocess.run([cli, "check", path, "--format", "json"], capture_output=True,
