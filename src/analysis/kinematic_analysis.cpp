@@ -103,6 +103,7 @@ class Stepper {
   void FinishDiagnostics(StepDiagnostics* diag);
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
   bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
+  bool StopAtLimitOrSingularity(double t, double bad_t, AnalysisReport* rep);
 
   std::unique_ptr<KinematicsWorkspace> ws_;
   const Model& model_;
@@ -114,6 +115,7 @@ class Stepper {
   SolveSummary last_;
   double prev_sign_ = 0;
   double last_condition_ = 1;  // the previous row's condition estimate
+  Outcome last_outcome_ = Outcome::Ok;  // of the row being solved, after refinement
   bool have_sign_ = false;
   Eigen::VectorXd phi_;
   std::unique_ptr<ForceSolver> forces_;
@@ -154,10 +156,12 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
 // position; good_ and *bad_t then bracket it.
 Stepper::Outcome Stepper::Refine(double t, StepDiagnostics* diag, double* bad_t) {
   const double good_sign = prev_sign_;
+  const bool good_have_sign = have_sign_;  // false right after a re-selection: no sign to compare yet
   Outcome out = Outcome::Suspect;
   for (int parts = 2; parts <= 1024 && out != Outcome::Ok; parts *= 2) {
     s_ = prev_;
     prev_sign_ = good_sign;
+    have_sign_ = good_have_sign;
     good_ = prev_;
     for (int i = 1; i <= parts; ++i) {
       const double ti = prev_.t + (t - prev_.t) * i / parts;
@@ -221,6 +225,31 @@ bool Stepper::ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep) {
   return true;
 }
 
+// A step that stays irregular down to 1/1024 of the step. Where the branch folds
+// (a stroke end, a limit of a non-Grashof input: no pose beyond it) it is a limit of
+// motion, located as the fold; where the solve goes on but det Φ_q changes sign, a
+// singular position the branches cross, located by bisection. Returns false when it
+// is neither (the caller reports the failed solve).
+bool Stepper::StopAtLimitOrSingularity(double t, double bad_t, AnalysisReport* rep) {
+  const double resolution = 1e-9 * (t - prev_.t) / 1024;
+  const int order = std::max(predictor_, 1);
+  if (bad_t > good_.t && !ws_->block_solver()) {
+    const LimitOfMotion lim = LocateLimit(*ws_, good_, good_.t, bad_t, resolution, order);
+    if (lim.fold || last_outcome_ == Outcome::Failed) {
+      rep->stop = StopKind::SolveFailed;
+      rep->message = LimitMessage(model_, lim, rep->rows) + "\n  " + SolveFailureMessage(*ws_, s_, t, rep->rows, last_.message);
+      rep->limit = lim;
+      return true;
+    }
+  }
+  if (last_outcome_ != Outcome::Suspect) return false;
+  const SingularPosition sp = LocateSingularity(*ws_, good_, good_.t, bad_t, prev_sign_, resolution, order);
+  rep->stop = StopKind::SingularPosition;
+  rep->message = SingularityMessage(model_, sp);
+  rep->singular = sp;
+  return true;
+}
+
 void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
   const Analysis& an = *model_.analysis;
   const double h = (an.end - an.start) / an.steps;
@@ -240,24 +269,11 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       out = Attempt(t, h, false);
       if (out != Outcome::Ok) out = Refine(t, &diag, &bad_t);
     }
-    if (out == Outcome::Suspect && step > 0) {
-      const SingularPosition sp = LocateSingularity(*ws_, good_, good_.t, bad_t, prev_sign_, 1e-9 * (t - prev_.t) / 1024,
-                                                    std::max(predictor_, 1));
-      rep->stop = StopKind::SingularPosition;
-      rep->message = SingularityMessage(model_, sp);
-      rep->singular = sp;
-      return;
-    }
+    last_outcome_ = out;
+    if (out != Outcome::Ok && step > 0 && StopAtLimitOrSingularity(t, bad_t, rep)) return;
     if (out != Outcome::Ok) {
       rep->stop = StopKind::SolveFailed;
       rep->message = SolveFailureMessage(*ws_, s_, t, rep->rows, last_.message);
-      if (step > 0 && bad_t > good_.t && !ws_->block_solver()) {
-        // The drivers ask for more than the branch gives: locate where it ends.
-        const LimitOfMotion lim = LocateLimit(*ws_, good_, good_.t, bad_t, 1e-9 * (t - prev_.t) / 1024,
-                                              std::max(predictor_, 1));
-        rep->message = LimitMessage(model_, lim, rep->rows) + "\n  " + rep->message;
-        rep->limit = lim;
-      }
       return;
     }
     FinishDiagnostics(&diag);
