@@ -97,6 +97,21 @@ def test_a_body_shape_is_drawn(cli, tmp_path):
     assert (np.abs(pages[0][scene] - pages[1][scene]).sum(axis=2) > 60).sum() > 300
 
 
+def test_plots_against_a_column(cli, tmp_path):
+    # "#x=NAME" (or the "against" menu) puts a column on the plot's horizontal axis:
+    # the axis is labelled with it and the curve spans its range.
+    import re
+    page = tmp_path / "x.html"
+    view(cli, os.path.join(ROOT, "mechanisms", "spatial-slider-crank.json"), page)
+    attrs, dom = browser.dump_dom(page, "t=0.3")
+    assert "t [s]" in re.findall(r"<text[^>]*>([^<]*)</text>", dom)
+    attrs, dom = browser.dump_dom(page, "t=0.3&x=crank_angle")
+    assert attrs.get("data-ready") == "1" and "data-errors" not in attrs
+    assert "crank_angle [deg]" in re.findall(r"<text[^>]*>([^<]*)</text>", dom)
+    path = re.search(r'<path d="M([0-9.]+),[0-9.]+[^"]*L([0-9.]+),[0-9.]+"', dom)
+    assert path and float(path.group(1)) < float(path.group(2))  # from the smallest angle to the largest
+
+
 def read_glb(path):
     data = open(path, "rb").read()
     magic, version, length = struct.unpack_from("<III", data, 0)

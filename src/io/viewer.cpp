@@ -238,7 +238,7 @@ body{margin:0;font:13px sans-serif;display:grid;grid-template-columns:1fr 500px;
 <span id="status"></span></div>
 <div id="view"></div>
 <div id="side"><div>columns (ctrl-click for several):</div><select id="columns" multiple></select>
-<svg id="plot" width="480" height="260"></svg></div><div id="label"></div>
+<div>against: <select id="xaxis"></select></div><svg id="plot" width="480" height="260"></svg></div><div id="label"></div>
 )HTML";
 
 }  // namespace

@@ -190,18 +190,30 @@
     label.style.top = (e.clientY + 12) + "px";
   });
 
-  // Plots: SVG, several columns against time, a cursor, stop marks.
+  // Plots: SVG, several columns against time or against any column (a driver's
+  // value, say), a cursor, stop marks.
   const plots = (function () {
-    const svg = document.getElementById("plot"), pick = document.getElementById("columns");
-    D.series.forEach(function (s, i) { const o = document.createElement("option"); o.value = i; o.textContent = s.name + (s.unit ? " [" + s.unit + "]" : ""); pick.appendChild(o); });
+    const svg = document.getElementById("plot"), pick = document.getElementById("columns"), xsel = document.getElementById("xaxis");
+    function title(s) { return s.name + (s.unit ? " [" + s.unit + "]" : ""); }
+    D.series.forEach(function (s, i) { const o = document.createElement("option"); o.value = i; o.textContent = title(s); pick.appendChild(o); });
+    { const o = document.createElement("option"); o.value = -1; o.textContent = "t [s]"; xsel.appendChild(o); }
+    D.series.forEach(function (s, i) { const o = document.createElement("option"); o.value = i; o.textContent = title(s); xsel.appendChild(o); });
     const defaults = D.series.map(function (s, i) { return i; }).filter(function (i) { return D.series[i].default; }).slice(0, 1);
     Array.prototype.forEach.call(pick.options, function (o) { o.selected = defaults.indexOf(Number(o.value)) >= 0; });
     const W = 480, H = 260, M = 44, ns = "http://www.w3.org/2000/svg";
     let cursorLine = null;
     function el(name, attrs) { const e = document.createElementNS(ns, name); for (const k in attrs) e.setAttribute(k, attrs[k]); return e; }
-    function X(t) { return M + (W - M - 8) * (t - T[0]) / Math.max(T[n - 1] - T[0], 1e-300); }
+    let xs = T, xlo = T[0], xhi = T[n - 1];
+    function Xv(v) { return M + (W - M - 8) * (v - xlo) / Math.max(xhi - xlo, 1e-300); }
+    function rowAt(t) { let k = 0; while (k + 1 < n && T[k + 1] <= t) ++k; return k; }
+    // Time maps straight onto a time axis; on a column's axis, through the row at that time.
+    function X(t) { return xs === T ? Xv(t) : Xv(xs[rowAt(t)]); }
     function draw() {
       while (svg.firstChild) svg.removeChild(svg.firstChild);
+      xs = Number(xsel.value) < 0 ? T : D.series[Number(xsel.value)].values;
+      xlo = Infinity; xhi = -Infinity;
+      xs.forEach(function (v) { if (isFinite(v)) { xlo = Math.min(xlo, v); xhi = Math.max(xhi, v); } });
+      if (!(xhi > xlo)) { xlo -= 1; xhi += 1; }
       const chosen = Array.prototype.filter.call(pick.options, function (o) { return o.selected; }).map(function (o) { return D.series[Number(o.value)]; });
       let lo = Infinity, hi = -Infinity;
       chosen.forEach(function (s) { s.values.forEach(function (v) { if (isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); } }); });
@@ -210,10 +222,10 @@
       svg.appendChild(el("rect", { x: M, y: 10, width: W - M - 8, height: H - 34, fill: "white", stroke: "#ccc" }));
       svg.appendChild(el("text", { x: 4, y: 18, "font-size": 10 }).appendChild(document.createTextNode(hi.toPrecision(4))).parentNode);
       svg.appendChild(el("text", { x: 4, y: H - 24, "font-size": 10 }).appendChild(document.createTextNode(lo.toPrecision(4))).parentNode);
-      svg.appendChild(el("text", { x: W / 2, y: H - 6, "font-size": 10 }).appendChild(document.createTextNode("t [s]")).parentNode);
+      svg.appendChild(el("text", { x: W / 2, y: H - 6, "font-size": 10 }).appendChild(document.createTextNode(xsel.options[xsel.selectedIndex].textContent)).parentNode);
       chosen.forEach(function (s, i) {
         let d = "";
-        s.values.forEach(function (v, k) { if (isFinite(v)) d += (d ? "L" : "M") + X(T[k]).toFixed(1) + "," + Y(v).toFixed(1); });
+        s.values.forEach(function (v, k) { if (isFinite(v) && isFinite(xs[k])) d += (d ? "L" : "M") + Xv(xs[k]).toFixed(1) + "," + Y(v).toFixed(1); });
         svg.appendChild(el("path", { d: d, fill: "none", stroke: "#" + palette[i % palette.length].toString(16).padStart(6, "0"), "stroke-width": 1.5 }));
       });
       D.marks.forEach(function (m) { svg.appendChild(el("line", { x1: X(m.t), x2: X(m.t), y1: 10, y2: H - 24, stroke: "red", "stroke-dasharray": "4 2" })); });
@@ -223,7 +235,8 @@
     }
     function cursor(t) { if (cursorLine) { cursorLine.setAttribute("x1", X(t)); cursorLine.setAttribute("x2", X(t)); } }
     pick.onchange = draw;
-    return { draw: draw, cursor: cursor };
+    xsel.onchange = draw;
+    return { draw: draw, cursor: cursor, xaxis: xsel };
   })();
 
   function resize() {
@@ -276,6 +289,10 @@
   resetView();
   plots.draw();
   const hash = new URLSearchParams(location.hash.slice(1));
+  if (hash.has("x")) {  // #x=NAME: plot against that column
+    Array.prototype.forEach.call(plots.xaxis.options, function (o, i) { if (o.textContent.split(" [")[0] === hash.get("x")) plots.xaxis.selectedIndex = i; });
+    plots.draw();
+  }
   setTime(hash.has("t") ? Number(hash.get("t")) : T[0]);
   if (hash.has("play")) playBtn.onclick();
   renderer.render(scene, camera);
