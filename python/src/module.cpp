@@ -92,6 +92,7 @@ const char* QuantityName(Quantity q) {
     case Quantity::PointPosition: return "point";
     case Quantity::Distance: return "distance";
     case Quantity::JointAngle: return "joint_angle";
+    case Quantity::Angle: return "angle";
     case Quantity::JointSlide: return "joint_slide";
     case Quantity::DriverEffort: return "driver_effort";
     case Quantity::DriverPower: return "driver_power";

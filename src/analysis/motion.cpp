@@ -87,6 +87,8 @@ void MotionLayout::AddOutput(const Model& model, int o) {
     for (int a = 0; a < 3; ++a) AddSeries(Quantity::PointPosition, out.name, o, out.name + kXyz[a], a, L, 0);
   } else if (out.kind == OutputKind::Distance) {
     AddSeries(Quantity::Distance, out.name, o, out.name, -1, L, 0);
+  } else if (out.kind == OutputKind::Angle) {
+    AddSeries(Quantity::Angle, out.name, o, out.name, -1, A, 0);
   } else {
     const JointType jt = model.joints[out.joint].type;
     if (jt == JointType::Revolute) {
@@ -239,6 +241,7 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
     for (int k = 0; k <= order; ++k) *out++ = dist.Derivative(k) * len;
     return out;
   }
+  if (op.kind == OutputKind::Angle) return AngleValues(s, o, out);
   const Joint& jt = model_.joints[op.joint];
   if (jt.type != JointType::Prismatic) {
     // θ = atan2(g_iᵀf_j, f_iᵀf_j), continuous from the design pose;
@@ -259,6 +262,47 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
     const auto jd = VecJet(d, order), jh = VecJet(hv, order);
     const Jet sl = jh[0] * jd[0] + jh[1] * jd[1] + jh[2] * jd[2];
     for (int k = 0; k <= order; ++k) *out++ = sl.Derivative(k) * len;
+  }
+  return out;
+}
+
+// Angle between u = A1·v1 and w = A2·v2 on jets (derivatives by the chain rule):
+//   unsigned: θ = atan2(|u × w|, u·w) in [0, π];
+//   about a (fixed in body1): θ = atan2(a·(u × w), u·w − (a·u)(a·w)), the turn from u
+//   to w about a, continuous over turns like a joint angle (absolute, not from the design).
+// Where the unsigned angle is 0 or π its derivatives do not exist: they read NaN.
+double* RowEvaluator::AngleValues(const SystemState& s, int o, double* out) {
+  const int order = layout_.options().order;
+  const double ang = layout_.angle_factor();
+  const Output& op = model_.outputs[o];
+  const BodyKinematics& b1 = s.Kin(op.body1);
+  const BodyKinematics& b2 = s.Kin(op.body2);
+  Vec3 uk[5], wk[5], ak[5];
+  for (int k = 0; k <= order; ++k) {
+    uk[k] = b1.VectorDerivative(op.vector1, k);
+    wk[k] = b2.VectorDerivative(op.vector2, k);
+    ak[k] = b1.VectorDerivative(op.about, k);
+  }
+  const auto u = VecJet(uk, order), w = VecJet(wk, order), a = VecJet(ak, order);
+  const std::array<Jet, 3> c = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+  const Jet dot = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+  if (op.signed_about) {
+    const Jet y = a[0] * c[0] + a[1] * c[1] + a[2] * c[2];
+    const Jet x = dot - (a[0] * u[0] + a[1] * u[1] + a[2] * u[2]) * (a[0] * w[0] + a[1] * w[1] + a[2] * w[2]);
+    const Jet th = Atan2(y, x);
+    if (order >= 1) angle_rate_[o] = th.Derivative(1);
+    *out++ = JointAngle(s, o, y.c[0], x.c[0]) * ang;
+    for (int k = 1; k <= order; ++k) *out++ = th.Derivative(k) * ang;
+    return out;
+  }
+  const double cross = std::sqrt(c[0].c[0] * c[0].c[0] + c[1].c[0] * c[1].c[0] + c[2].c[0] * c[2].c[0]);
+  *out++ = std::atan2(cross, dot.c[0]) * ang;
+  if (order == 0) return out;
+  try {
+    const Jet th = Atan2(Sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), dot);
+    for (int k = 1; k <= order; ++k) *out++ = th.Derivative(k) * ang;
+  } catch (const JetDomainError&) {
+    for (int k = 1; k <= order; ++k) *out++ = std::nan("");
   }
   return out;
 }

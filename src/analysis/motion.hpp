@@ -26,6 +26,7 @@ enum class Quantity {
   Distance,           // output distance
   JointAngle,         // revolute angle / cylindrical & screw ".angle"
   JointSlide,         // prismatic slide / cylindrical & screw ".slide"
+  Angle,              // angle output: between two body-fixed vectors
   DriverEffort,       // torque or force a driver applies (".effort"), order 0..1
   DriverPower,        // ".power"
   JointForce,         // reaction force on body2 by body1, global x/y/z (".fx")
@@ -112,6 +113,7 @@ class RowEvaluator {
   double* ForceValues(const ForceResults* f, double* out) const;
 
   double JointAngle(const SystemState& s, int o, double raw_sin, double raw_cos);
+  double* AngleValues(const SystemState& s, int o, double* out);
 
   const Model& model_;
   const MotionLayout& layout_;

@@ -150,7 +150,7 @@ void WriteSeries(const Motion& m, const std::vector<int>& frames, Json* j) {
   for (int c = 1; c < m.cols(); ++c) {
     const ColumnDescriptor& d = m.columns()[c];
     if (d.quantity == Quantity::EulerParameter) continue;
-    const bool by_default = (d.order == 0 && (d.quantity == Quantity::PointPosition || d.quantity == Quantity::JointAngle ||
+    const bool by_default = (d.order == 0 && (d.quantity == Quantity::PointPosition || d.quantity == Quantity::JointAngle || d.quantity == Quantity::Angle ||
                                               d.quantity == Quantity::JointSlide || d.quantity == Quantity::Distance ||
                                               d.quantity == Quantity::DriverEffort));
     any_default = any_default || by_default;

@@ -715,13 +715,18 @@ class SpecReader {
       out.kind = OutputKind::Distance;
       allowed.insert(allowed.end(), {"body1", "point1", "body2", "point2"});
       required.insert(required.end(), {"body1", "point1", "body2", "point2"});
+    } else if (type_s && *type_s == "angle") {
+      out.kind = OutputKind::Angle;
+      allowed.insert(allowed.end(), {"body1", "vector1", "body2", "vector2", "about"});
+      required.insert(required.end(), {"body1", "vector1", "body2", "vector2"});
     } else {
       if (type_s) {
-        const std::string g = DidYouMean(*type_s, {"point", "joint", "distance"});
+        const std::string g = DidYouMean(*type_s, {"point", "joint", "distance", "angle"});
         rd_.Error(ptr + "/type", "unknown output type '" + Shorten(*type_s) + "'",
-                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: point, joint, distance");
+                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: point, joint, distance, angle");
       }
-      allowed.insert(allowed.end(), {"body", "point", "joint", "body1", "point1", "body2", "point2"});
+      allowed.insert(allowed.end(), {"body", "point", "joint", "body1", "point1", "body2", "point2", "vector1",
+                                     "vector2", "about"});
     }
     rd_.CheckObject(o, ptr, allowed, required, "an output");
     auto name = rd_.Name(o, ptr, "output");
@@ -772,6 +777,8 @@ class SpecReader {
       out.joint = it->second;
       out.body1 = j.body1;
       out.body2 = j.body2;
+    } else if (out.kind == OutputKind::Angle) {
+      if (!ReadAngleOutput(o, ptr, &out)) return;
     } else {
       auto b1 = BodyRef(o, "body1", ptr);
       auto b2 = BodyRef(o, "body2", ptr);
@@ -785,6 +792,45 @@ class SpecReader {
     }
     out.name = *name;
     model_.outputs.push_back(out);
+  }
+
+  // {"type": "angle", "body1", "vector1", "body2", "vector2", "about"?}: directions in
+  // global design coordinates, stored as unit vectors fixed in their bodies.
+  bool ReadAngleOutput(const json& o, const std::string& ptr, Output* out) {
+    auto b1 = BodyRef(o, "body1", ptr);
+    auto b2 = BodyRef(o, "body2", ptr);
+    std::vector<Vec3> global;  // the directions as written, for the parallel check
+    auto direction = [&](const char* key, std::optional<BodyIndex> body) -> std::optional<Vec3> {
+      auto v = rd_.Vector(o, key, ptr, true);
+      if (!v) return std::nullopt;
+      if (!(v->norm() > 0)) {
+        rd_.Error(ptr + "/" + key, std::string("'") + key + "' is the zero vector", "give a direction, e.g. [1, 0, 0]");
+        return std::nullopt;
+      }
+      global.push_back(v->normalized());
+      if (!body) return std::nullopt;
+      return Vec3((Pose(*body).second.transpose() * v->normalized()).normalized());
+    };
+    auto v1 = direction("vector1", b1);
+    auto v2 = direction("vector2", b2);
+    if (!b1 || !b2 || !v1 || !v2) return false;
+    out->body1 = *b1;
+    out->body2 = *b2;
+    out->vector1 = *v1;
+    out->vector2 = *v2;
+    if (o.contains("about")) {
+      auto a = direction("about", b1);
+      if (!a) return false;
+      for (size_t k = 0; k + 1 < global.size(); ++k)
+        if (global.back().cross(global[k]).norm() < 1e-6) {  // at the design pose
+          rd_.Error(ptr + "/about", "'about' is parallel to one of the two vectors: the signed angle about it is undefined",
+                    "choose an axis across both vectors (e.g. their common normal)");
+          return false;
+        }
+      out->about = *a;
+      out->signed_about = true;
+    }
+    return true;
   }
 
   void ReadExpect(const json& doc) {

@@ -89,7 +89,7 @@ struct Driver {
   TimeFunction function;             // SI value: rad or m
 };
 
-enum class OutputKind { Point, JointCoordinate, Distance };
+enum class OutputKind { Point, JointCoordinate, Distance, Angle };
 
 struct Output {
   std::string name;
@@ -97,6 +97,10 @@ struct Output {
   BodyIndex body1 = kGround, body2 = kGround;
   Vec3 point1 = Vec3::Zero(), point2 = Vec3::Zero();  // local points
   int joint = -1;
+  // Angle: unit vectors fixed in body1 and body2 (local); with `signed_about`, the
+  // angle from vector1 to vector2 about `about` (unit, fixed in body1, local).
+  Vec3 vector1 = Vec3::UnitX(), vector2 = Vec3::UnitX(), about = Vec3::UnitZ();
+  bool signed_about = false;
 };
 
 struct Analysis {
