@@ -20,8 +20,7 @@ double ResidualForAccuracy(double tolerance, double condition, int order) {
   // only spend iterations that cannot halve it.
   const double floor = 16 * std::numeric_limits<double>::epsilon() / 2;
   const double k = std::max(condition, 1.0);
-  // Half the tolerance: the other half is left to the back-solves' own round-off 8u·κ^k.
-  return std::max(floor, order >= 1 ? 0.5 * tolerance / (k * k) : 0.5 * tolerance / k);
+  return std::max(floor, order >= 1 ? tolerance / (k * k) : tolerance / k);
 }
 
 }  // namespace mechkin

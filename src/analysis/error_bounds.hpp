@@ -11,8 +11,8 @@ namespace mechkin {
 /// near a dead centre in tests/extremes/assembly_test.cpp. Fills bound[0..max_order].
 void CalcErrorBounds(double condition, double residual, int max_order, double* bound);
 
-/// The scaled residual at which the residual's share of those bounds is half the
-/// tolerance for every order up to `order`: κ·r ≤ tol/2 (position) and κ²·r ≤ tol/2
+/// The scaled residual at which the residual's share of those bounds meets the
+/// tolerance for every order up to `order`: κ·r ≤ tol (position) and κ²·r ≤ tol
 /// (every derivative), never below the round-off floor 16u. The tolerance is then on
 /// the answer, not only on the residual (issue "Right at every order", item 2).
 double ResidualForAccuracy(double tolerance, double condition, int order);
