@@ -86,12 +86,13 @@ TEST(Reselection, BennettFortySixtyFiveRunsAFullTurnOnItsClosedForm) {
     EXPECT_NEAR(m.at(r, c1), 2 * M_PI * r / 360, 1e-12);
     EXPECT_NEAR(std::remainder(t2 - BennettTheta2(t1, alpha, beta), 2 * M_PI), 0, 1e-9) << "row " << r;
   }
-  // The same run at the default tolerance also completes, within 1e-8 rad.
+  // The same run at the default tolerance also completes, within 1e-9 rad (4.9e-11
+  // measured: the solve meets the tolerance on the answer).
   AnalysisReport coarse;
   const Motion d = RunBennett(doc, 1e-10, &coarse);
   ASSERT_TRUE(d.complete) << coarse.message;
   for (int r = 0; r < d.rows(); ++r)
-    EXPECT_NEAR(std::remainder(theta2_design + d.at(r, c2) - BennettTheta2(theta1 + d.at(r, c1), alpha, beta), 2 * M_PI), 0, 1e-8);
+    EXPECT_NEAR(std::remainder(theta2_design + d.at(r, c2) - BennettTheta2(theta1 + d.at(r, c1), alpha, beta), 2 * M_PI), 0, 1e-9);
 }
 
 TEST(Reselection, NotNeededWhereTheFirstChoiceStaysGood) {
