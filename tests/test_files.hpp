@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -44,5 +45,30 @@ inline std::vector<std::string> HeaderOf(const Motion& m) {
   for (const auto& c : m.columns()) h.push_back(c.Header());
   return h;
 }
+
+/// A planar four-bar of revolutes about z (crank a from the origin, coupler b, rocker
+/// c to the ground pivot at (d, 0)), upper assembly branch, crank at theta0_deg; the
+/// crank turns 360°/s, output `rocker_angle`. Overconstrained by 3 (spatial revolutes).
+inline nlohmann::json PlanarFourBar(double a, double b, double c, double d, double theta0_deg, int steps) {
+  const double th = theta0_deg * M_PI / 180;
+  const double Bx = a * std::cos(th), By = a * std::sin(th);
+  const double dx = d - Bx, dy = -By, dist = std::hypot(dx, dy);
+  const double al = (b * b - c * c + dist * dist) / (2 * dist), h = std::sqrt(b * b - al * al);
+  const double Cx = Bx + (al * dx - h * dy) / dist, Cy = By + (al * dy + h * dx) / dist;
+  using nlohmann::json;
+  const json z = {0, 0, 1};
+  return {{"mechkin", 1}, {"units", {{"length", "mm"}, {"angle", "deg"}}},
+          {"bodies", {{{"name", "crank"}, {"position", {Bx / 2, By / 2, 0}}},
+                      {{"name", "coupler"}, {"position", {(Bx + Cx) / 2, (By + Cy) / 2, 0}}},
+                      {{"name", "rocker"}, {"position", {(Cx + d) / 2, Cy / 2, 0}}}}},
+          {"joints", {{{"name", "A"}, {"type", "revolute"}, {"body1", "ground"}, {"body2", "crank"}, {"origin", {0, 0, 0}}, {"axis", z}},
+                      {{"name", "B"}, {"type", "revolute"}, {"body1", "crank"}, {"body2", "coupler"}, {"origin", {Bx, By, 0}}, {"axis", z}},
+                      {{"name", "C"}, {"type", "revolute"}, {"body1", "coupler"}, {"body2", "rocker"}, {"origin", {Cx, Cy, 0}}, {"axis", z}},
+                      {{"name", "D"}, {"type", "revolute"}, {"body1", "ground"}, {"body2", "rocker"}, {"origin", {d, 0, 0}}, {"axis", z}}}},
+          {"drivers", {{{"name", "motor"}, {"type", "rotation"}, {"joint", "A"}, {"function", "360*t"}}}},
+          {"analysis", {{"start", 0}, {"end", 1}, {"steps", steps}}},
+          {"outputs", {{{"name", "rocker_angle"}, {"type", "joint"}, {"joint", "D"}}}}};
+}
+
 
 }  // namespace mechkin::testing_files

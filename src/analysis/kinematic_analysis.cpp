@@ -103,7 +103,7 @@ class Stepper {
   void FinishDiagnostics(StepDiagnostics* diag);
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
   bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
-  bool StopAtLimitOrSingularity(double t, double bad_t, AnalysisReport* rep);
+  bool StopAtLimitOrSingularity(Outcome out, double t, double bad_t, AnalysisReport* rep);
 
   std::unique_ptr<KinematicsWorkspace> ws_;
   const Model& model_;
@@ -115,7 +115,7 @@ class Stepper {
   SolveSummary last_;
   double prev_sign_ = 0;
   double last_condition_ = 1;  // the previous row's condition estimate
-  Outcome last_outcome_ = Outcome::Ok;  // of the row being solved, after refinement
+  double reselect_above_ = kReselectCondition;  // condition that triggers the next search
   bool have_sign_ = false;
   Eigen::VectorXd phi_;
   std::unique_ptr<ForceSolver> forces_;
@@ -214,8 +214,17 @@ bool Stepper::Reselect(const SystemState& at, double min_gain, AnalysisReport* r
 
 // After an accepted row whose rows have become ill-conditioned: re-select there and
 // solve the row again with the new rows (position from the pose found, derivatives).
+// A search that found nothing better is not repeated at every row: the next one
+// waits until the condition has grown 4× (or fallen back below the trigger).
 bool Stepper::ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep) {
-  if (!(diag->condition > kReselectCondition) || !Reselect(s_, kReselectGain, rep)) return false;
+  if (!(diag->condition > kReselectCondition)) {
+    reselect_above_ = kReselectCondition;
+    return false;
+  }
+  if (!(diag->condition > reselect_above_) || selection_.set_aside.empty()) return false;
+  reselect_above_ = 4 * diag->condition;
+  if (!Reselect(s_, kReselectGain, rep)) return false;
+  reselect_above_ = kReselectCondition;
   last_ = SolvePosition(*ws_, solve_, &s_, false);
   if (!last_.success) return false;
   SolveDerivatives(*ws_, options_.order, &s_);
@@ -230,19 +239,19 @@ bool Stepper::ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep) {
 // motion, located as the fold; where the solve goes on but det Φ_q changes sign, a
 // singular position the branches cross, located by bisection. Returns false when it
 // is neither (the caller reports the failed solve).
-bool Stepper::StopAtLimitOrSingularity(double t, double bad_t, AnalysisReport* rep) {
+bool Stepper::StopAtLimitOrSingularity(Outcome out, double t, double bad_t, AnalysisReport* rep) {
   const double resolution = 1e-9 * (t - prev_.t) / 1024;
   const int order = std::max(predictor_, 1);
   if (bad_t > good_.t && !ws_->block_solver()) {
     const LimitOfMotion lim = LocateLimit(*ws_, good_, good_.t, bad_t, resolution, order);
-    if (lim.fold || last_outcome_ == Outcome::Failed) {
+    if (lim.fold || out == Outcome::Failed) {
       rep->stop = StopKind::SolveFailed;
       rep->message = LimitMessage(model_, lim, rep->rows) + "\n  " + SolveFailureMessage(*ws_, s_, t, rep->rows, last_.message);
       rep->limit = lim;
       return true;
     }
   }
-  if (last_outcome_ != Outcome::Suspect) return false;
+  if (out != Outcome::Suspect) return false;
   const SingularPosition sp = LocateSingularity(*ws_, good_, good_.t, bad_t, prev_sign_, resolution, order);
   rep->stop = StopKind::SingularPosition;
   rep->message = SingularityMessage(model_, sp);
@@ -269,8 +278,7 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       out = Attempt(t, h, false);
       if (out != Outcome::Ok) out = Refine(t, &diag, &bad_t);
     }
-    last_outcome_ = out;
-    if (out != Outcome::Ok && step > 0 && StopAtLimitOrSingularity(t, bad_t, rep)) return;
+    if (out != Outcome::Ok && step > 0 && StopAtLimitOrSingularity(out, t, bad_t, rep)) return;
     if (out != Outcome::Ok) {
       rep->stop = StopKind::SolveFailed;
       rep->message = SolveFailureMessage(*ws_, s_, t, rep->rows, last_.message);

@@ -67,27 +67,24 @@ RowSelection SelectWellConditionedRows(const ConstraintSystem& sys, const System
 }
 
 std::string DrivingRefusal(const ConstraintSystem& sys, const RowSelection& sel) {
-  if (!sel.conflicting_drivers.empty() || static_cast<int>(sel.active.size()) != 6 * sys.num_bodies()) {
-    // Before blaming the drivers: the joints may lock the mechanism, or the design
-    // pose may be a singular position of the driven mechanism.
-    const MobilityReport mob = CalcMobility(sys.model());
-    if (mob.locked) return mob.verdict + ". The drivers cannot move it (mechkin check).";
-    if (mob.singular_lost > 0) {
-      std::string m = "the design pose is a singular position of the driven mechanism: the drivers control " +
-                      std::to_string(mob.singular_lost) + " fewer direction(s) there than at nearby poses";
-      for (const auto& d : mob.singular_directions) m += "\n    " + d;
-      return m + "\n  The run starts at the design pose: move it off the singular position (e.g. change a joint "
-                 "angle or a leg length slightly).";
-    }
+  const int n = sys.num_bodies();
+  if (sel.conflicting_drivers.empty() && static_cast<int>(sel.active.size()) == 6 * n) return "";
+  // Before blaming the drivers: the joints may lock the mechanism, or the design
+  // pose may be a singular position of the driven mechanism.
+  const MobilityReport mob = CalcMobility(sys.model());
+  if (mob.locked) return mob.verdict + ". The drivers cannot move it (mechkin check).";
+  if (mob.singular_lost > 0) {
+    std::string m = "the design pose is a singular position of the driven mechanism: the drivers control " +
+                    std::to_string(mob.singular_lost) + " fewer direction(s) there than at nearby poses";
+    for (const auto& d : mob.singular_directions) m += "\n    " + d;
+    return m + "\n  The run starts at the design pose: move it off the singular position (e.g. change a joint "
+               "angle or a leg length slightly).";
   }
   if (!sel.conflicting_drivers.empty()) {
     std::string m = "over-driven: driver(s) ";
     for (size_t k = 0; k < sel.conflicting_drivers.size(); ++k) m += (k ? ", `" : "`") + sel.conflicting_drivers[k] + "`";
     return m + " conflict with the joints or other drivers. Remove or change them (mechkin check names the freedoms).";
   }
-  const int n = sys.num_bodies();
-  if (static_cast<int>(sel.active.size()) == 6 * n) return "";
-  const MobilityReport mob = CalcMobility(sys.model());
   std::string m = "under-driven: " + std::to_string(6 * n - static_cast<int>(sel.active.size())) +
                   " freedom(s) are not driven";
   for (const auto& f : mob.remaining_freedoms) m += "\n    " + f;

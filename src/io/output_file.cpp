@@ -116,13 +116,9 @@ bool OutputFile::Write(const char* data, size_t size) {
   return true;
 }
 
-// Writes `first_line` and then the temporary file's content to `fd`.
-bool OutputFile::CopyTo(int fd, const std::string& first_line, std::string* error) {
-  int err = 0;
-  if (!first_line.empty() && !WriteAll(fd, first_line.data(), first_line.size(), &err)) {
-    *error = std::strerror(err);
-    return false;
-  }
+// The temporary file's content from its start, chunk by chunk, to `sink` (which
+// returns false, having set *error, to stop).
+bool OutputFile::ReadBack(const std::function<bool(const char*, size_t)>& sink, std::string* error) {
   if (::lseek(fd_, 0, SEEK_SET) < 0) { *error = std::strerror(errno); return false; }
   std::vector<char> chunk(kBufferSize);
   for (;;) {
@@ -130,22 +126,31 @@ bool OutputFile::CopyTo(int fd, const std::string& first_line, std::string* erro
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) { *error = std::strerror(errno); return false; }
     if (n == 0) return true;
-    if (!WriteAll(fd, chunk.data(), static_cast<size_t>(n), &err)) { *error = std::strerror(err); return false; }
+    if (!sink(chunk.data(), static_cast<size_t>(n))) return false;
   }
+}
+
+// Writes `first_line` and then the temporary file's content to `fd`.
+bool OutputFile::CopyTo(int fd, const std::string& first_line, std::string* error) {
+  int err = 0;
+  if (!first_line.empty() && !WriteAll(fd, first_line.data(), first_line.size(), &err)) {
+    *error = std::strerror(err);
+    return false;
+  }
+  return ReadBack(
+      [&](const char* data, size_t n) {
+        if (WriteAll(fd, data, n, &err)) return true;
+        *error = std::strerror(err);
+        return false;
+      },
+      error);
 }
 
 bool OutputFile::CopyToStream(const std::string& first_line, std::string* error) {
   std::ostream& out = *stream_;
   out << first_line;
-  if (::lseek(fd_, 0, SEEK_SET) < 0) { *error = std::strerror(errno); return false; }
-  std::vector<char> chunk(kBufferSize);
-  for (;;) {
-    const ssize_t n = ::read(fd_, chunk.data(), chunk.size());
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) { *error = std::strerror(errno); return false; }
-    if (n == 0) break;
-    out.write(chunk.data(), n);
-  }
+  if (!ReadBack([&](const char* data, size_t n) { out.write(data, static_cast<std::streamsize>(n)); return true; }, error))
+    return false;
   out.flush();
   if (!out) { *error = std::strerror(errno ? errno : EIO); return false; }
   return true;

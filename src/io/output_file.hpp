@@ -10,6 +10,7 @@
 // the errno text and leaves the target untouched.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -38,6 +39,7 @@ class OutputFile {
 
  private:
   bool Flush();
+  bool ReadBack(const std::function<bool(const char*, size_t)>& sink, std::string* error);
   bool CopyTo(int fd, const std::string& first_line, std::string* error);
   bool CopyToStream(const std::string& first_line, std::string* error);
 

@@ -403,12 +403,42 @@ void SetOverconstrainedVerdict(MobilityReport* rep) {
                  (rep->redundant == 1 ? "" : "s") + " — the Grübler count undercounts the mobility";
 }
 
+// The assembly's outcome in the report; false when the joints do not assemble.
+bool RecordAssembly(const SolveSummary& assembled, int equations, MobilityReport* rep) {
+  rep->assembly_residual = assembled.residual;
+  rep->equations = equations;
+  if (!assembled.success) {
+    rep->assembly_message = "the joints cannot be assembled near the design pose (scaled residual " +
+                            std::to_string(assembled.residual) + "): " + assembled.message;
+    return false;
+  }
+  rep->assembled = true;
+  rep->assembly_message = "assembled";
+  return true;
+}
+
+// Mobility 0 from the joints: the verdict names the joints that lock it.
+void SetLockedVerdict(const Model& model, MobilityReport* rep) {
+  rep->locked = true;
+  FindLockingJoints(model, rep);
+  rep->verdict = "locked by the joints: they allow no motion (mobility 0) before any driver";
+  if (!rep->locking_joints.empty()) {
+    rep->verdict += "; removing any one of ";
+    for (size_t k = 0; k < rep->locking_joints.size(); ++k)
+      rep->verdict += (k ? ", `" : "`") + rep->locking_joints[k] + "`";
+    rep->verdict += " would free it — check their axes and positions";
+  }
+  if (rep->redundant > 0) rep->verdict_kind = MobilityVerdict::Overconstrained;
+}
+
+}  // namespace
+
 // Models too large for the dense SVD (more than 200 bodies): the same analysis with
 // the sparse rank-revealing QR (kinematics/sparse_rank.hpp). The margin reported is
 // the QR's (smallest kept pivot |R_kk|, largest column left over), not singular
-// values; the search for a more generic pose and the joint-change suggestions are
-// left to the dense path.
-MobilityReport CalcMobilityLarge(const Model& model) {
+// values; the search for a more generic pose, the joint-change suggestions and the
+// locked / singular-design-pose diagnoses are left to the dense path.
+MobilityReport CalcMobilitySparse(const Model& model) {
   MobilityReport rep;
   rep.rank_method = "sparse-qr";
   const int n = model.num_bodies();
@@ -418,15 +448,7 @@ MobilityReport CalcMobilityLarge(const Model& model) {
   SolveOptions opt;
   opt.max_iterations = 100;
   const SolveSummary assembled = AssembleMinNormSparse(joints, opt, &state);
-  rep.assembly_residual = assembled.residual;
-  rep.equations = joints.num_rows();
-  if (!assembled.success) {
-    rep.assembly_message = "the joints cannot be assembled near the design pose (scaled residual " +
-                           std::to_string(assembled.residual) + "): " + assembled.message;
-    return rep;
-  }
-  rep.assembled = true;
-  rep.assembly_message = "assembled";
+  if (!RecordAssembly(assembled, joints.num_rows(), &rep)) return rep;
   const SparseRowRank jr(ScaledSparseJacobian(joints, state, AllRows(joints)));
   rep.rank = jr.rank();
   rep.sigma_min_kept = jr.smallest_pivot();
@@ -452,12 +474,8 @@ MobilityReport CalcMobilityLarge(const Model& model) {
   return rep;
 }
 
-}  // namespace
-
-MobilityReport CalcMobilitySparse(const Model& model) { return CalcMobilityLarge(model); }
-
 MobilityReport CalcMobility(const Model& model) {
-  if (6 * model.num_bodies() > kMaxDenseColumns) return CalcMobilityLarge(model);
+  if (6 * model.num_bodies() > kMaxDenseColumns) return CalcMobilitySparse(model);
   MobilityReport rep;
   const int n = model.num_bodies();
   const ConstraintSystem joints(model, false);
@@ -466,15 +484,7 @@ MobilityReport CalcMobility(const Model& model) {
   SolveOptions opt;
   opt.max_iterations = 100;
   const SolveSummary assembled = AssembleMinNorm(joints, AllRows(joints), opt, &state);
-  rep.assembly_residual = assembled.residual;
-  rep.equations = joints.num_rows();
-  if (!assembled.success) {
-    rep.assembly_message = "the joints cannot be assembled near the design pose (scaled residual " +
-                           std::to_string(assembled.residual) + "): " + assembled.message;
-    return rep;
-  }
-  rep.assembled = true;
-  rep.assembly_message = "assembled";
+  if (!RecordAssembly(assembled, joints.num_rows(), &rep)) return rep;
   RankInfo info = CalcRank(ScaledJacobian(joints, state));
   SeekGenericRank(model, joints, opt, &state, &info);
   rep.rank = info.rank;
@@ -505,15 +515,7 @@ MobilityReport CalcMobility(const Model& model) {
   ClassifyDriving(model, [&] { return CalcRank(Jf).null_basis; }, &rep);
   if (rep.mobility == 0 && n > 0) {
     // The joints alone lock it: say so before any talk of conflicting drivers.
-    rep.locked = true;
-    FindLockingJoints(model, &rep);
-    rep.verdict = "locked by the joints: they allow no motion (mobility 0) before any driver";
-    if (!rep.locking_joints.empty()) {
-      rep.verdict += "; removing any one of ";
-      for (size_t k = 0; k < rep.locking_joints.size(); ++k) rep.verdict += (k ? ", `" : "`") + rep.locking_joints[k] + "`";
-      rep.verdict += " would free it — check their axes and positions";
-    }
-    if (rep.redundant > 0) rep.verdict_kind = MobilityVerdict::Overconstrained;
+    SetLockedVerdict(model, &rep);
   } else if (rep.redundant > 0) {
     const std::string suggestion = SuggestRemoval(model, rep);
     if (!suggestion.empty()) rep.suggestions.push_back(suggestion);

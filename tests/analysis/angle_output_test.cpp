@@ -26,22 +26,13 @@ double Transmission(double theta) {
 
 TEST(AngleOutput, FourBarTransmissionAngleMatchesTheClosedForm) {
   const double g = 100, a = 40, b = 90, c = 80, th0 = M_PI / 6;
-  const double bx = a * std::cos(th0), by = a * std::sin(th0), dx = g - bx, dy = -by, d = std::hypot(dx, dy);
-  const double aa = (b * b - c * c + d * d) / (2 * d), h = std::sqrt(b * b - aa * aa);
-  const double cx = bx + aa * dx / d - h * dy / d, cy = by + aa * dy / d + h * dx / d;
-  auto rev = [](const char* name, const char* b1, const char* b2, double x, double y) {
-    return json{{"name", name}, {"type", "revolute"}, {"body1", b1}, {"body2", b2}, {"origin", {x, y, 0}}, {"axis", {0, 0, 1}}};
-  };
-  const json j = {{"mechkin", 1}, {"units", {{"length", "mm"}, {"angle", "deg"}}},
-                  {"bodies", {{{"name", "crank"}, {"position", {bx / 2, by / 2, 0}}},
-                              {{"name", "coupler"}, {"position", {(bx + cx) / 2, (by + cy) / 2, 0}}},
-                              {{"name", "rocker"}, {"position", {(cx + g) / 2, cy / 2, 0}}}}},
-                  {"joints", {rev("A", "ground", "crank", 0, 0), rev("B", "crank", "coupler", bx, by),
-                              rev("C", "coupler", "rocker", cx, cy), rev("D", "rocker", "ground", g, 0)}},
-                  {"drivers", {{{"name", "motor"}, {"type", "rotation"}, {"joint", "A"}, {"function", "360*t"}}}},
-                  {"outputs", {{{"name", "mu"}, {"type", "angle"}, {"body1", "coupler"}, {"vector1", {bx - cx, by - cy, 0}},
-                                {"body2", "rocker"}, {"vector2", {g - cx, -cy, 0}}}}},
-                  {"analysis", {{"start", 0}, {"end", 1}, {"steps", 72}}}};
+  // The joint points, as the file places them: B on the crank, C where coupler and rocker meet.
+  json j = testing_files::PlanarFourBar(a, b, c, g, 30, 72);
+  const auto& B = j["joints"][1]["origin"];
+  const auto& C = j["joints"][2]["origin"];
+  const double bx = B[0], by = B[1], cx = C[0], cy = C[1];
+  j["outputs"] = {{{"name", "mu"}, {"type", "angle"}, {"body1", "coupler"}, {"vector1", {bx - cx, by - cy, 0}},
+                   {"body2", "rocker"}, {"vector2", {g - cx, -cy, 0}}}};
   TableOptions table;
   table.si = true;
   table.order = 2;

@@ -44,21 +44,8 @@ TEST(LimitOfMotion, PistonDrivenPastItsStrokeEnd) {
 // also across a re-selection of its redundant equations near the limit.
 TEST(LimitOfMotion, NonGrashofInputReachesItsLimit) {
   const double g = 100, a = 70, b = 40, c = 60, th = M_PI / 3;
-  const double bx = a * std::cos(th), by = a * std::sin(th), dx = g - bx, dy = -by, d = std::hypot(dx, dy);
-  const double aa = (b * b - c * c + d * d) / (2 * d), h = std::sqrt(b * b - aa * aa);
-  const double cx = bx + aa * dx / d - h * dy / d, cy = by + aa * dy / d + h * dx / d;
-  using nlohmann::json;
-  auto rev = [](const char* name, const char* b1, const char* b2, double x, double y) {
-    return json{{"name", name}, {"type", "revolute"}, {"body1", b1}, {"body2", b2}, {"origin", {x, y, 0}}, {"axis", {0, 0, 1}}};
-  };
-  const json j = {{"mechkin", 1}, {"units", {{"length", "mm"}, {"angle", "deg"}}},
-                  {"bodies", {{{"name", "crank"}, {"position", {bx / 2, by / 2, 0}}},
-                              {{"name", "coupler"}, {"position", {(bx + cx) / 2, (by + cy) / 2, 0}}},
-                              {{"name", "rocker"}, {"position", {(cx + g) / 2, cy / 2, 0}}}}},
-                  {"joints", {rev("A", "ground", "crank", 0, 0), rev("B", "crank", "coupler", bx, by),
-                              rev("C", "coupler", "rocker", cx, cy), rev("D", "rocker", "ground", g, 0)}},
-                  {"drivers", {{{"name", "motor"}, {"type", "rotation"}, {"joint", "A"}, {"function", "90*t"}}}},
-                  {"analysis", {{"start", 0}, {"end", 1}, {"steps", 90}}}};
+  nlohmann::json j = testing_files::PlanarFourBar(a, b, c, g, 60, 90);
+  j["drivers"][0]["function"] = "90*t";
   const AnalysisReport rep = RunKinematicAnalysis(testing_files::FromJson(j), AnalysisOptions{},
                                                   [](const SystemState&, const StepDiagnostics&) { return true; });
   ASSERT_FALSE(rep.complete);

@@ -13,27 +13,6 @@ namespace mechkin {
 namespace {
 
 // A planar 4R four-bar (mm) with the crank at theta0_deg at the design pose, upper branch.
-nlohmann::json FourBar(double a, double b, double c, double d, double theta0_deg, int steps) {
-  const double th = theta0_deg * M_PI / 180;
-  const double Bx = a * std::cos(th), By = a * std::sin(th);
-  const double dx = d - Bx, dy = -By, dist = std::hypot(dx, dy);
-  const double al = (b * b - c * c + dist * dist) / (2 * dist), h = std::sqrt(b * b - al * al);
-  const double Cx = Bx + (al * dx - h * dy) / dist, Cy = By + (al * dy + h * dx) / dist;
-  using nlohmann::json;
-  const json z = {0, 0, 1};
-  return {{"mechkin", 1}, {"units", {{"length", "mm"}, {"angle", "deg"}}},
-          {"bodies", {{{"name", "crank"}, {"position", {Bx / 2, By / 2, 0}}},
-                      {{"name", "coupler"}, {"position", {(Bx + Cx) / 2, (By + Cy) / 2, 0}}},
-                      {{"name", "rocker"}, {"position", {(Cx + d) / 2, Cy / 2, 0}}}}},
-          {"joints", {{{"name", "A"}, {"type", "revolute"}, {"body1", "ground"}, {"body2", "crank"}, {"origin", {0, 0, 0}}, {"axis", z}},
-                      {{"name", "B"}, {"type", "revolute"}, {"body1", "crank"}, {"body2", "coupler"}, {"origin", {Bx, By, 0}}, {"axis", z}},
-                      {{"name", "C"}, {"type", "revolute"}, {"body1", "coupler"}, {"body2", "rocker"}, {"origin", {Cx, Cy, 0}}, {"axis", z}},
-                      {{"name", "D"}, {"type", "revolute"}, {"body1", "ground"}, {"body2", "rocker"}, {"origin", {d, 0, 0}}, {"axis", z}}}},
-          {"drivers", {{{"name", "motor"}, {"type", "rotation"}, {"joint", "A"}, {"function", "360*t"}}}},
-          {"analysis", {{"start", 0}, {"end", 1}, {"steps", steps}}},
-          {"outputs", {{{"name", "rocker_angle"}, {"type", "joint"}, {"joint", "D"}}}}};
-}
-
 // Closed form (upper assembly branch): rocker angle relative to its design value.
 double RockerAngle(double a, double b, double c, double d, double theta) {
   const double Bx = a * std::cos(theta), By = a * std::sin(theta);
@@ -71,7 +50,7 @@ RunOut RunRocker(const nlohmann::json& j, const AnalysisOptions& o) {
 // refines that interval into sub-steps and stays on the design branch.
 TEST(Branches, CoarseStepsDoNotJumpBranch) {
   const double a = 40, b = 120, c = 80, d = 81, th0 = 60;
-  const nlohmann::json j = FourBar(a, b, c, d, th0, 8);
+  const nlohmann::json j = testing_files::PlanarFourBar(a, b, c, d, th0, 8);
   auto closed = [&](double t) {
     const double phi0 = RockerAngle(a, b, c, d, th0 * M_PI / 180);
     return std::remainder(RockerAngle(a, b, c, d, (th0 + 360 * t) * M_PI / 180) - phi0, 2 * M_PI);
@@ -103,7 +82,7 @@ TEST(Branches, CoarseStepsDoNotJumpBranch) {
 // a change point where the branches meet. Starting at 60°, the crank reaches it
 // after 300° of driver motion; the run stops there and says so.
 TEST(Branches, ChangePointOfAnEqualGrashofSum) {
-  const nlohmann::json j = FourBar(40, 100, 80, 60, 60, 90);
+  const nlohmann::json j = testing_files::PlanarFourBar(40, 100, 80, 60, 60, 90);
   const RunOut out = RunRocker(j, AnalysisOptions{1});
   ASSERT_FALSE(out.rep.complete);
   ASSERT_TRUE(out.rep.singular.has_value()) << out.rep.message;

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "analysis/kinematic_analysis.hpp"
-#include "model/loader.hpp"
+#include "cli/commands/load_for_command.hpp"
 #include "analysis/motion.hpp"
 #include "io/async_sink.hpp"
 #include "io/interrupt.hpp"
@@ -170,13 +170,9 @@ void PrintStats(const AnalysisReport& rep, const std::vector<StepDiagnostics>& s
 }  // namespace
 
 int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
-  const LoadResult loaded = LoadMechanismFile(o.file);
-  for (const auto& w : loaded.warnings) err << o.file << ": warning: " << w.ToString() << "\n";
-  if (!loaded.ok()) {
-    for (const auto& e : loaded.errors) err << o.file << ": error: " << e.ToString() << "\n";
-    return 1;
-  }
-  const Model& model = *loaded.model;
+  const std::optional<Model> loaded = LoadForCommand(o.file, err);
+  if (!loaded) return 1;
+  const Model& model = *loaded;
   TableOptions topt;
   topt.order = o.order;
   topt.si = o.si;

@@ -2,7 +2,7 @@
 
 #include "analysis/motion.hpp"
 #include "io/viewer.hpp"
-#include "model/loader.hpp"
+#include "cli/commands/load_for_command.hpp"
 
 namespace mechkin {
 
@@ -30,13 +30,9 @@ std::string DefaultPage(const std::string& file) {
 }  // namespace
 
 int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
-  const LoadResult loaded = LoadMechanismFile(o.file);
-  for (const auto& w : loaded.warnings) err << o.file << ": warning: " << w.ToString() << "\n";
-  if (!loaded.ok()) {
-    for (const auto& e : loaded.errors) err << o.file << ": error: " << e.ToString() << "\n";
-    return 1;
-  }
-  const Model& model = *loaded.model;
+  const std::optional<Model> loaded = LoadForCommand(o.file, err);
+  if (!loaded) return 1;
+  const Model& model = *loaded;
   TableOptions t;
   t.order = o.order;
   t.forces = (o.forces || model.HasForces()) && !o.no_forces && o.order >= 2;
