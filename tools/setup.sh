@@ -8,7 +8,7 @@ here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-build}"; shift || true
 pkgs=(g++ cmake ninja-build libeigen3-dev libceres-dev libsuitesparse-dev nlohmann-json3-dev libcli11-dev
       libgtest-dev libgmock-dev libbenchmark-dev python3 python3-dev python3-jsonschema
-      pybind11-dev python3-numpy python3-pandas python3-pytest python3-pil libjs-three chromium
+      pybind11-dev python3-numpy python3-pandas python3-pytest python3-pil python3-dask python3-distributed libjs-three chromium
       clang libclang-rt-14-dev valgrind libsimbody-dev)
 SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
 missing=()

@@ -16,6 +16,10 @@ bool AnalysisOptions::IsValid(std::string* error) const {
   if (max_iterations < 1) { *error = "max_iterations must be >= 1"; return false; }
   if (predictor_order < 0 || predictor_order > 3) { *error = "predictor order must be 0..3"; return false; }
   if (forces && order < 2) { *error = "forces need accelerations: use order 2 or more (--order 3 gives their rates too)"; return false; }
+  if (!sensitivity_parameters.empty() && (formulation != Formulation::Omega || solver != PositionSolver::Newton)) {
+    *error = "sensitivities use the default formulation and solver (omega, newton)";
+    return false;
+  }
   return true;
 }
 
@@ -56,7 +60,8 @@ WorkspaceOptions WorkspaceOptionsOf(const AnalysisOptions& o) {
   w.solver = o.solver;
   w.ceres_normalization_residual = o.ceres_normalization_residual;
   w.order = o.order;
-  if (!o.forces) w.needed_bodies = o.needed_bodies;  // forces need the whole system
+  // Forces and sensitivities solve with the whole system's factorization.
+  if (!o.forces && o.sensitivity_parameters.empty()) w.needed_bodies = o.needed_bodies;
   return w;
 }
 
@@ -85,9 +90,9 @@ double RowsCondition(const Eigen::MatrixXd& scaled_J, const std::vector<int>& ro
 class Stepper {
  public:
   Stepper(std::unique_ptr<KinematicsWorkspace> ws, const AnalysisOptions& options, RowSelection selection,
-          SystemState start)
+          SystemState start, std::unique_ptr<SensitivitySolver> sensitivity)
       : ws_(std::move(ws)), model_(ws_->system().model()), options_(options), selection_(std::move(selection)),
-        s_(std::move(start)), prev_(s_), predicted_(s_), good_(s_) {
+        s_(std::move(start)), prev_(s_), predicted_(s_), good_(s_), sensitivity_(std::move(sensitivity)) {
     if (options.forces) forces_ = std::make_unique<ForceSolver>(ws_->system(), selection_, options.order);
     solve_.tolerance = options.tolerance;
     solve_.max_iterations = options.max_iterations;
@@ -120,6 +125,7 @@ class Stepper {
   Eigen::VectorXd phi_;
   std::unique_ptr<ForceSolver> forces_;
   ForceResults force_results_;
+  std::unique_ptr<SensitivitySolver> sensitivity_;
 };
 
 // One attempt from the accepted state to time t (predictor over dt).
@@ -291,6 +297,14 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       diag.forces = &force_results_;
       rep->indeterminate_reactions = forces_->indeterminate();
     }
+    if (sensitivity_) {
+      if (!sensitivity_->Solve(*ws_, s_)) {
+        rep->stop = StopKind::SolveFailed;
+        rep->message = "the sensitivities cannot be solved at t = " + std::to_string(t) + " s";
+        return;
+      }
+      diag.sensitivity = sensitivity_.get();
+    }
     diag.solve_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     UpdateAngleReferences(ws_->system(), &s_);
     if (options_.keep_step_diagnostics) rep->steps.push_back(diag);
@@ -319,6 +333,14 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     rep.message = "the file has no 'analysis' block: add {\"start\": 0, \"end\": 1, \"steps\": 100}";
     return rep;
   }
+  std::unique_ptr<SensitivitySolver> sensitivity;
+  try {
+    if (!options.sensitivity_parameters.empty())
+      sensitivity = std::make_unique<SensitivitySolver>(model, options.sensitivity_parameters, options.order);
+  } catch (const std::exception& e) {
+    rep.message = e.what();
+    return rep;
+  }
   try {
     const ConstraintSystem sys(model, true);
     SystemState s(sys);
@@ -338,7 +360,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     rep.stop = StopKind::AssemblyFailed;
     if (!ContinueToStart(*ws, model.analysis->start, solve, &s, &rep.assembly_iterations, &rep.message)) return rep;
     rep.stop = StopKind::None;
-    Stepper(std::move(ws), options, selection, std::move(s)).Run(on_step, &rep);
+    Stepper(std::move(ws), options, selection, std::move(s), std::move(sensitivity)).Run(on_step, &rep);
   } catch (const std::exception& e) {
     rep.stop = StopKind::SolveFailed;
     rep.message = e.what();

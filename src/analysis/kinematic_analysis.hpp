@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/forces.hpp"
+#include "analysis/sensitivity.hpp"
 #include "analysis/singularity.hpp"
 #include "kinematics/workspace.hpp"
 
@@ -33,6 +34,8 @@ struct AnalysisOptions {
   // Inverse dynamics along the motion (driver efforts, joint reactions, energy):
   // needs order ≥ 2; rates with order ≥ 3.
   bool forces = false;
+  // Parameters whose sensitivities each row carries (analysis/sensitivity.hpp).
+  std::vector<std::string> sensitivity_parameters;
   bool IsValid(std::string* error) const;
 };
 
@@ -46,6 +49,7 @@ struct StepDiagnostics {
   double error_bound[kMaxOrder + 1] = {0, 0, 0, 0, 0};
   double solve_seconds = 0;        // position + derivative solves of this step
   const ForceResults* forces = nullptr;  // when AnalysisOptions::forces
+  const SensitivitySolver* sensitivity = nullptr;  // when AnalysisOptions::sensitivity_parameters
   int substeps_refinements = 0;    // 1 when the step had to be refined into sub-steps
 };
 

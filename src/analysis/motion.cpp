@@ -54,6 +54,24 @@ MotionLayout::MotionLayout(const Model& model, const TableOptions& options) : op
   columns_.push_back({"condition", "", "", Quantity::Condition});
   for (int k = 0; k <= options.order; ++k)
     columns_.push_back({std::string("error_bound") + kSuffix[k], "", "", Quantity::ErrorBound, -1, -1, k});
+  AddSensitivities();
+}
+
+// "piston.x/d(crank)" for every body and output column and every parameter, in
+// the table's units per unit of the parameter as written in the file.
+void MotionLayout::AddSensitivities() {
+  const size_t base_columns = columns_.size();
+  for (size_t p = 0; p < options_.sensitivity.size(); ++p)
+    for (size_t c = 0; c < base_columns; ++c) {
+      const ColumnDescriptor& b = columns_[c];
+      if (b.quantity == Quantity::Time || b.quantity >= Quantity::DriverEffort) continue;
+      ColumnDescriptor d = b;
+      d.name = b.name + "/d(" + options_.sensitivity[p] + ")";
+      d.unit = b.unit.empty() ? "1/" + options_.sensitivity[p] : b.unit + "/" + options_.sensitivity[p];
+      d.wrt = static_cast<int>(p);
+      d.base = static_cast<int>(c);
+      columns_.push_back(d);
+    }
 }
 
 void MotionLayout::AddSeries(Quantity q, const std::string& subject, int index, const std::string& name, int component,
@@ -144,7 +162,8 @@ int MotionLayout::Find(const std::string& name) const {
 int MotionLayout::Find(Quantity q, int subject_index, int component, int order) const {
   for (size_t c = 0; c < columns_.size(); ++c) {
     const ColumnDescriptor& d = columns_[c];
-    if (d.quantity == q && d.subject_index == subject_index && d.component == component && d.order == order)
+    if (d.quantity == q && d.subject_index == subject_index && d.component == component && d.order == order &&
+        d.wrt < 0)
       return static_cast<int>(c);
   }
   return -1;
@@ -200,8 +219,51 @@ void RowEvaluator::Evaluate(const SystemState& s, const StepDiagnostics& d, doub
   *out++ = d.residual;
   *out++ = d.condition;
   for (int k = 0; k <= order; ++k) *out++ = d.error_bound[k];
+  if (!layout_.options().sensitivity.empty()) SensitivityValues(d, row);
   last_t_ = s.t;
   first_row_ = false;
+}
+
+// d(column)/dp = [column(model₊, s₊) − column(model₋, s₋)] / 2h (analysis/sensitivity.hpp):
+// each side evaluated by its own RowEvaluator, so angles stay continuous on both.
+void RowEvaluator::SensitivityValues(const StepDiagnostics& d, double* row) {
+  const SensitivitySolver* sens = d.sensitivity;
+  const auto& cols = layout_.columns();
+  if (!sens) {
+    for (const auto& c : cols) if (c.wrt >= 0) row[&c - cols.data()] = std::nan("");
+    return;
+  }
+  if (perturbed_.empty()) {
+    TableOptions side_options = layout_.options();
+    side_options.sensitivity.clear();
+    side_options.forces = false;
+    for (int p = 0; p < sens->size(); ++p)
+      for (int sign : {1, -1}) {
+        PerturbedRows pr;
+        pr.layout = std::make_unique<MotionLayout>(sens->model(p, sign), side_options);
+        pr.eval = std::make_unique<RowEvaluator>(sens->model(p, sign), *pr.layout);
+        pr.row.resize(pr.layout->size());
+        for (const auto& c : cols)
+          if (c.wrt == p) pr.column.push_back(pr.layout->Find(cols[c.base].name));
+        perturbed_.push_back(std::move(pr));
+      }
+  }
+  StepDiagnostics side_diag = d;
+  side_diag.forces = nullptr;
+  side_diag.sensitivity = nullptr;
+  for (int p = 0; p < sens->size(); ++p) {
+    PerturbedRows& plus = perturbed_[2 * p];
+    PerturbedRows& minus = perturbed_[2 * p + 1];
+    plus.eval->Evaluate(sens->state(p, 1), side_diag, plus.row.data());
+    minus.eval->Evaluate(sens->state(p, -1), side_diag, minus.row.data());
+    const double two_h = 2 * sens->step(p);
+    size_t k = 0;
+    for (size_t c = 0; c < cols.size(); ++c)
+      if (cols[c].wrt == p) {
+        row[c] = (plus.row[plus.column[k]] - minus.row[minus.column[k]]) / two_h;
+        ++k;
+      }
+  }
 }
 
 double* RowEvaluator::BodyValues(const BodyKinematics& b, double* out) const {
@@ -372,6 +434,7 @@ Motion RunMotion(const Model& model, const AnalysisOptions& options, const Table
   AnalysisOptions o = options;
   o.order = table.order;
   o.forces = table.forces;
+  o.sensitivity_parameters = table.sensitivity;
   if (!table.all_bodies || !table.all_outputs) {
     o.needed_bodies = motion.layout().NeededBodies(model);
     if (o.needed_bodies.empty()) o.needed_bodies.push_back(-1);  // nothing requested: solve no block

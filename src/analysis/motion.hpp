@@ -9,6 +9,7 @@
 // front ends can view without copying; the CLI streams rows to a file instead.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,6 +51,9 @@ struct ColumnDescriptor {
   int subject_index = -1;  // body index or output index
   int component = -1;      // 0..2 for x/y/z, 0..3 for e0..e3, −1 when none
   int order = 0;           // time-derivative order
+  // Sensitivity column "piston.x/d(crank)": the parameter's index in
+  // TableOptions::sensitivity and the column it differentiates (−1 otherwise).
+  int wrt = -1, base = -1;
   /// "crank.x_t [mm/s]" as in the table's header (no brackets when unitless).
   std::string Header() const;
   bool IsDiagnostic() const { return quantity >= Quantity::NewtonIterations; }
@@ -62,6 +66,8 @@ struct TableOptions {
   bool all_bodies = true, all_outputs = true;
   std::vector<std::string> bodies, outputs;  // selections when not all
   bool forces = false;  // driver efforts, joint reactions, energies (after the outputs)
+  // Parameters: d(every body and output column)/d(parameter) after all other columns.
+  std::vector<std::string> sensitivity;
 };
 
 class MotionLayout {
@@ -88,6 +94,7 @@ class MotionLayout {
   void AddBody(const Model& model, int b);
   void AddOutput(const Model& model, int o);
   void AddForces(const Model& model);
+  void AddSensitivities();
   void AddRated(Quantity q, const std::string& subject, int index, const std::string& name, int component,
                 const std::string& unit);
   void AddSeries(Quantity q, const std::string& subject, int index, const std::string& name, int component,
@@ -111,6 +118,16 @@ class RowEvaluator {
   double* BodyValues(const BodyKinematics& b, double* out) const;
   double* OutputValues(const SystemState& s, int o, double* out);
   double* ForceValues(const ForceResults* f, double* out) const;
+  void SensitivityValues(const StepDiagnostics& d, double* row);
+
+  // The same layout evaluated on the model compiled at p ± h (sensitivity columns).
+  struct PerturbedRows {
+    std::unique_ptr<MotionLayout> layout;
+    std::unique_ptr<RowEvaluator> eval;
+    std::vector<double> row;
+    std::vector<int> column;  // per sensitivity column of the parameter: its base column there
+  };
+  std::vector<PerturbedRows> perturbed_;  // per parameter: + then −
 
   double JointAngle(const SystemState& s, int o, double raw_sin, double raw_cos);
   double* AngleValues(const SystemState& s, int o, double* out);

@@ -12,7 +12,16 @@ namespace mechkin {
 // exhaust the stack.
 class ExpressionParser {
  public:
-  explicit ExpressionParser(Expression* e) : e_(e), s_(e->text_) {}
+  ExpressionParser(Expression* e, const ExpressionSymbols* symbols, bool allow_time)
+      : e_(e), s_(e->text_), symbols_(symbols), allow_time_(allow_time) {}
+
+  static const std::map<std::string, Expression::Op>& Functions() {
+    static const std::map<std::string, Op> kFunctions = {
+        {"sin", Op::Sin}, {"cos", Op::Cos}, {"tan", Op::Tan}, {"asin", Op::Asin},
+        {"acos", Op::Acos}, {"atan", Op::Atan}, {"atan2", Op::Atan2}, {"exp", Op::Exp},
+        {"log", Op::Log}, {"sqrt", Op::Sqrt}};
+    return kFunctions;
+  }
 
   void Run() {
     Skip();
@@ -133,17 +142,22 @@ class ExpressionParser {
     while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) ++pos_;
     const std::string name = s_.substr(start, pos_ - start);
     const int col = static_cast<int>(start) + 1;
-    if (name == "t") return Add(Op::Time);
+    if (name == "t") {
+      if (!allow_time_)
+        throw ExpressionError("'t' is not allowed here: geometry and parameters are constants", col);
+      return Add(Op::Time);
+    }
     if (name == "pi") return Add(Op::Const, -1, -1, M_PI);
-    static const std::map<std::string, Op> kFunctions = {
-        {"sin", Op::Sin}, {"cos", Op::Cos}, {"tan", Op::Tan}, {"asin", Op::Asin},
-        {"acos", Op::Acos}, {"atan", Op::Atan}, {"atan2", Op::Atan2}, {"exp", Op::Exp},
-        {"log", Op::Log}, {"sqrt", Op::Sqrt}};
-    const auto it = kFunctions.find(name);
-    if (it == kFunctions.end())
-      throw ExpressionError("unknown name '" + name +
-                                "' (use t, pi, sin, cos, tan, asin, acos, atan, atan2, exp, log, sqrt)",
-                            col);
+    if (symbols_) {
+      const auto sym = symbols_->find(name);
+      if (sym != symbols_->end()) return Add(Op::Const, -1, -1, sym->second);
+    }
+    const auto it = Functions().find(name);
+    if (it == Functions().end())
+      throw ExpressionError("unknown name '" + name + "' (use " + (allow_time_ ? "t, " : "") +
+                                (symbols_ && !symbols_->empty() ? "the parameters, " : "") +
+                                "pi, sin, cos, tan, asin, acos, atan, atan2, exp, log, sqrt)",
+                            col, name);
     if (!Accept('(')) throw ExpressionError("'" + name + "' needs '(' after it", Col());
     const int a = ParseSum(depth + 1);
     int b = -1;
@@ -157,17 +171,23 @@ class ExpressionParser {
 
   Expression* e_;
   const std::string& s_;
+  const ExpressionSymbols* symbols_;
+  bool allow_time_;
   size_t pos_ = 0;
 };
 
-Expression Expression::Parse(const std::string& text) {
+bool Expression::IsReservedName(const std::string& name) {
+  return name == "t" || name == "pi" || ExpressionParser::Functions().count(name) > 0;
+}
+
+Expression Expression::Parse(const std::string& text, const ExpressionSymbols* symbols, bool allow_time) {
   if (text.size() > kMaxLength)
     throw ExpressionError("expression is longer than " + std::to_string(kMaxLength) + " characters (" +
                               std::to_string(text.size()) + ")",
                           static_cast<int>(kMaxLength));
   Expression e;
   e.text_ = text;
-  ExpressionParser(&e).Run();
+  ExpressionParser(&e, symbols, allow_time).Run();
   return e;
 }
 

@@ -136,19 +136,51 @@ class Reader {
 
   std::optional<double> Number(const json& obj, const std::string& key, const std::string& ptr) {
     if (!obj.contains(key)) return std::nullopt;
-    const json& v = obj.at(key);
+    return ScalarValue(obj.at(key), ptr + "/" + key, "'" + key + "'");
+  }
+
+  // A number written as a JSON number or as an expression string over the
+  // parameters (no t): "crank*cos(30*pi/180)".
+  std::optional<double> ScalarValue(const json& v, const std::string& p, const std::string& what) {
+    if (v.is_string()) return ConstantExpression(v.get<std::string>(), p);
     if (!v.is_number()) {
-      Error(ptr + "/" + key, "'" + key + "' must be a number, not " + TypeName(v),
-            v.is_string() ? "write the number without quotes (NaN and Infinity are not allowed)" : "");
+      Error(p, what + " must be a number or an expression string, not " + TypeName(v));
       return std::nullopt;
     }
     const double d = v.get<double>();
     if (!std::isfinite(d)) {
-      Error(ptr + "/" + key, "'" + key + "' is not a finite number", "use a finite value");
+      Error(p, what + " is not a finite number", "use a finite value");
       return std::nullopt;
     }
     return d;
   }
+
+  std::optional<double> ConstantExpression(const std::string& text, const std::string& p) {
+    try {
+      const Expression e = Expression::Parse(text, &symbols_, /*allow_time=*/false);
+      const double d = e.Eval(0).c[0];
+      if (std::isfinite(d)) return d;
+      Error(p, "'" + Shorten(text) + "' evaluates to " + std::to_string(d), "check the expression and the parameters");
+    } catch (const ExpressionError& err) {
+      Error(p, "bad expression at column " + std::to_string(err.column) + ": " + err.what(), UnknownNameFix(err));
+    } catch (const std::exception& err) {
+      Error(p, "'" + Shorten(text) + "' cannot be evaluated: " + err.what(),
+            "check the expression and the parameters' values");
+    }
+    return std::nullopt;
+  }
+
+  // "did you mean 'crank'?" for a mistyped parameter.
+  std::string UnknownNameFix(const ExpressionError& err) const {
+    if (err.unknown_name.empty()) return "";
+    std::vector<std::string> names;
+    for (const auto& kv : symbols_) names.push_back(kv.first);
+    const std::string guess = DidYouMean(err.unknown_name, names);
+    if (!guess.empty()) return "did you mean '" + guess + "'?";
+    return names.empty() ? "declare it in the top-level \"parameters\"" : "parameters: " + Join(names);
+  }
+
+  ExpressionSymbols& symbols() { return symbols_; }
 
   std::optional<int> Integer(const json& obj, const std::string& key, const std::string& ptr) {
     if (!obj.contains(key)) return std::nullopt;
@@ -161,9 +193,12 @@ class Reader {
       }
       return static_cast<int>(v.get<long long>());
     }
-    if (v.is_number_float()) {
-      const double d = v.get<double>();
-      if (std::isfinite(d) && d == std::floor(d) && std::abs(d) <= 1e9) return static_cast<int>(d);
+    if (v.is_number_float() || v.is_string()) {
+      const auto d = ScalarValue(v, ptr + "/" + key, "'" + key + "'");
+      if (!d) return std::nullopt;
+      if (*d == std::floor(*d) && std::abs(*d) <= 1e9) return static_cast<int>(*d);
+      Error(ptr + "/" + key, "'" + key + "' must be an integer of magnitude below 1e9, not " + std::to_string(*d));
+      return std::nullopt;
     }
     Error(ptr + "/" + key, "'" + key + "' must be an integer, not " + TypeName(v));
     return std::nullopt;
@@ -209,16 +244,9 @@ class Reader {
     }
     Vec3 out;
     for (int k = 0; k < 3; ++k) {
-      if (!v[k].is_number()) {
-        Error(p + "/" + std::to_string(k), "component must be a number, not " + TypeName(v[k]),
-              v[k].is_string() ? "write the number without quotes (NaN and Infinity are not allowed)" : "");
-        return std::nullopt;
-      }
-      out[k] = v[k].get<double>();
-      if (!std::isfinite(out[k])) {
-        Error(p + "/" + std::to_string(k), "component is not a finite number", "use a finite value");
-        return std::nullopt;
-      }
+      const auto c = ScalarValue(v[k], p + "/" + std::to_string(k), "component");
+      if (!c) return std::nullopt;
+      out[k] = *c;
     }
     if (nonzero && (!std::isfinite(out.norm()) || out.cwiseAbs().maxCoeff() > 1e150)) {
       Error(p, "'" + key + "' is too large to normalize", "give a direction with components of ordinary size");
@@ -255,6 +283,7 @@ class Reader {
 
  private:
   LoadResult* out_;
+  ExpressionSymbols symbols_;
 };
 
 struct JointTypeInfo {
@@ -317,11 +346,9 @@ std::optional<Vec4> ReadOrientation(Reader& rd, const json& o, const std::string
     }
     Vec4 q;
     for (int k = 0; k < 4; ++k) {
-      if (!e[k].is_number() || !std::isfinite(e[k].get<double>())) {
-        rd.Error(p + "/" + std::to_string(k), "component must be a finite number");
-        return std::nullopt;
-      }
-      q[k] = e[k].get<double>();
+      const auto c = rd.ScalarValue(e[k], p + "/" + std::to_string(k), "component");
+      if (!c) return std::nullopt;
+      q[k] = *c;
     }
     if (!(q.norm() > 1e-12) || !std::isfinite(q.norm())) {
       rd.Error(p, "Euler parameters have (almost) zero length", "give a unit quaternion, e.g. [1, 0, 0, 0]");
@@ -343,11 +370,9 @@ std::optional<Vec4> ReadOrientation(Reader& rd, const json& o, const std::string
       return std::nullopt;
     }
     for (int j = 0; j < 3; ++j) {
-      if (!m[i][j].is_number() || !std::isfinite(m[i][j].get<double>())) {
-        rd.Error(p + "/" + std::to_string(i) + "/" + std::to_string(j), "matrix entry must be a finite number");
-        return std::nullopt;
-      }
-      R(i, j) = m[i][j].get<double>();
+      const auto c = rd.ScalarValue(m[i][j], p + "/" + std::to_string(i) + "/" + std::to_string(j), "matrix entry");
+      if (!c) return std::nullopt;
+      R(i, j) = *c;
     }
   }
   // Re-orthonormalise small CAD round-off silently, larger defects with a warning,
@@ -369,11 +394,13 @@ std::optional<Vec4> ReadOrientation(Reader& rd, const json& o, const std::string
 std::optional<TimeFunction> ReadFunction(Reader& rd, const json& f, const std::string& ptr, double scale) {
   if (f.is_string()) {
     try {
-      auto e = std::make_shared<Expression>(Expression::Parse(f.get<std::string>()));
+      auto e = std::make_shared<Expression>(Expression::Parse(f.get<std::string>(), &rd.symbols()));
       return TimeFunction(e, scale);
     } catch (const ExpressionError& err) {
+      const std::string fix = rd.UnknownNameFix(err);
       rd.Error(
           ptr, std::string("bad expression at column ") + std::to_string(err.column) + ": " + err.what(),
+          !fix.empty() && !rd.symbols().empty() ? fix :
           "expressions use t, numbers, + - * / ^, parentheses, pi and sin cos tan asin acos atan atan2 exp log sqrt");
       return std::nullopt;
     }
@@ -460,14 +487,137 @@ class SpecReader {
   bool ReadHeader(const json& doc) {
     if (!rd_.CheckObject(
             doc, "",
-            {"mechkin", "name", "description", "units", "bodies", "joints", "drivers", "analysis", "outputs", "expect",
-             "gravity", "loads"},
+            {"mechkin", "name", "description", "units", "parameters", "bodies", "joints", "drivers", "analysis",
+             "outputs", "expect", "gravity", "loads"},
             {"mechkin", "bodies", "joints"}, "the mechanism file"))
       return false;
     if (auto v = rd_.Integer(doc, "mechkin", ""); v && *v != 1)
       rd_.Error("/mechkin", "unsupported format version " + std::to_string(*v), "this mechkin reads version 1");
     if (auto s = rd_.String(doc, "name", "")) model_.name = *s;
     if (auto s = rd_.String(doc, "description", "")) model_.description = *s;
+    return true;
+  }
+
+  // Parameters first: any number below may be an expression over them.
+  // A parameter defined from others is resolved once those are (cycles named).
+  void ReadParameters(const json& doc, const ParameterOverrides& overrides) {
+    if (doc.contains("parameters") && doc.at("parameters").is_object()) {
+      parameters_doc_ = &doc.at("parameters");
+      std::vector<std::pair<std::string, json>> pending;  // name, value json (number or expression)
+      for (const auto& item : doc.at("parameters").items())
+        if (auto value = ParameterDeclaration(item.key(), item.value())) pending.emplace_back(item.key(), *value);
+      ResolveParameters(pending, overrides);
+    } else if (doc.contains("parameters")) {
+      rd_.Error("/parameters", "'parameters' must be an object {\"name\": value, ...}, not " +
+                                   TypeName(doc.at("parameters")));
+    }
+    for (const auto& kv : overrides)
+      if (!model_.FindParameter(kv.first)) {
+        std::vector<std::string> names;
+        for (const auto& p : model_.parameters) names.push_back(p.name);
+        const std::string guess = DidYouMean(kv.first, names);
+        rd_.Error("/parameters", "no parameter '" + Shorten(kv.first) + "' to set",
+                  guess.empty() ? (names.empty() ? "the file declares no parameters" : "parameters: " + Join(names))
+                                : "did you mean '" + guess + "'?");
+      }
+  }
+
+  // One declaration: checks the name and the object form; returns the value's json.
+  std::optional<json> ParameterDeclaration(const std::string& name, const json& v) {
+    const std::string ptr = "/parameters/" + EscapeToken(name);
+    const bool identifier = !name.empty() && name.size() <= 64 &&
+                            (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                            std::all_of(name.begin(), name.end(), [](char c) {
+                              return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                            });
+    if (!identifier || Expression::IsReservedName(name)) {
+      rd_.Error(ptr, "invalid parameter name '" + Shorten(name) + "'",
+                "use 1-64 letters, digits or '_', starting with a letter or '_', other than t, pi and the "
+                "function names");
+      return std::nullopt;
+    }
+    Parameter param;
+    param.name = name;
+    if (!v.is_object()) {
+      model_.parameters.push_back(param);
+      return v;
+    }
+    if (!rd_.CheckObject(v, ptr, {"value", "tolerance", "min", "max", "description"}, {"value"}, "a parameter"))
+      return std::nullopt;
+    param.tolerance = PlainNumber(v, "tolerance", ptr);
+    param.min = PlainNumber(v, "min", ptr);
+    param.max = PlainNumber(v, "max", ptr);
+    if (param.tolerance && *param.tolerance < 0)
+      rd_.Error(ptr + "/tolerance", "tolerance must not be negative", "give the ± band as a positive number");
+    if (param.min && param.max && !(*param.min < *param.max))
+      rd_.Error(ptr + "/max", "'max' must be greater than 'min'", "swap them or widen the range");
+    model_.parameters.push_back(param);
+    if (!v.contains("value")) return std::nullopt;
+    return v.at("value");
+  }
+
+  std::optional<double> PlainNumber(const json& obj, const std::string& key, const std::string& ptr) {
+    if (!obj.contains(key)) return std::nullopt;
+    if (!obj.at(key).is_number()) {
+      rd_.Error(ptr + "/" + key, "'" + key + "' must be a number, not " + TypeName(obj.at(key)));
+      return std::nullopt;
+    }
+    return rd_.Number(obj, key, ptr);
+  }
+
+  Parameter* FindParameter(const std::string& name) {
+    for (auto& p : model_.parameters)
+      if (p.name == name) return &p;
+    return nullptr;
+  }
+
+  // Resolves values in dependency order: each pass evaluates those whose
+  // parameters are known; what is left when a pass makes no progress is a cycle.
+  void ResolveParameters(std::vector<std::pair<std::string, json>> pending, const ParameterOverrides& overrides) {
+    ExpressionSymbols& symbols = rd_.symbols();
+    while (!pending.empty()) {
+      std::vector<std::pair<std::string, json>> waiting;
+      for (const auto& [name, value] : pending) ResolveOne(name, value, overrides, pending, &waiting);
+      if (waiting.size() == pending.size()) {
+        std::vector<std::string> names;
+        for (const auto& w : waiting) names.push_back(w.first);
+        rd_.Error("/parameters/" + EscapeToken(waiting.front().first),
+                  "parameters defined in terms of each other: " + Join(names),
+                  "give at least one of them a number");
+        return;
+      }
+      pending = std::move(waiting);
+    }
+    for (Parameter& p : model_.parameters)
+      if (symbols.count(p.name)) p.value = symbols.at(p.name);
+  }
+
+  // Evaluates one parameter, or defers it (into `waiting`) when it names one not yet known.
+  bool ResolveOne(const std::string& name, const json& value, const ParameterOverrides& overrides,
+                  const std::vector<std::pair<std::string, json>>& pending,
+                  std::vector<std::pair<std::string, json>>* waiting) {
+    Parameter* param = FindParameter(name);
+    const json& declared = parameters_doc_->at(name);
+    const std::string ptr = "/parameters/" + EscapeToken(name) + (declared.is_object() ? "/value" : "");
+    if (value.is_string() && param) param->expression = value.get<std::string>();
+    if (const auto o = overrides.find(name); o != overrides.end()) {
+      rd_.symbols()[name] = o->second;
+      if (param) param->overridden = true;
+      return true;
+    }
+    if (value.is_string()) {
+      try {
+        Expression::Parse(value.get<std::string>(), &rd_.symbols(), false);
+      } catch (const ExpressionError& err) {
+        const bool later = std::any_of(pending.begin(), pending.end(),
+                                       [&](const auto& p) { return p.first == err.unknown_name && p.first != name; });
+        if (later) {
+          waiting->emplace_back(name, value);
+          return false;
+        }
+      }
+    }
+    if (const auto d = rd_.ScalarValue(value, ptr, "parameter '" + name + "'")) rd_.symbols()[name] = *d;
     return true;
   }
 
@@ -1407,6 +1557,7 @@ class SpecReader {
 
   Reader rd_;
   Model model_;
+  const json* parameters_doc_ = nullptr;  // the "parameters" object while it is read
   std::map<std::string, BodyIndex> body_index_;
   std::map<std::string, int> joint_index_;
   std::set<std::string> driver_names_, output_names_;
@@ -1518,12 +1669,15 @@ bool ParseJson(const std::string& text, Reader& rd, json* doc_out) {
 
 }  // namespace
 
-LoadResult LoadMechanismText(const std::string& text, const std::string& source_name) {
+LoadResult LoadMechanismText(const std::string& text, const std::string& source_name,
+                             const ParameterOverrides& overrides) {
   LoadResult result;
   SpecReader spec(&result);
   json doc;
   if (!ParseJson(text, spec.reader(), &doc) || !spec.ReadHeader(doc)) return result;
   spec.model().source = source_name;
+  spec.model().document = std::make_shared<const std::string>(text);
+  spec.ReadParameters(doc, overrides);
   spec.ReadUnits(doc);
   spec.ReadArray(doc, "bodies", "body", [&](const json& e, const std::string& p) { spec.ReadBody(e, p); });
   spec.ReadArray(doc, "joints", "joint", [&](const json& e, const std::string& p) { spec.ReadJoint(e, p); });
@@ -1565,7 +1719,20 @@ bool ReadStream(int fd, std::string* text, std::string* why, int timeout_ms) {
 
 }  // namespace
 
-LoadResult LoadMechanismFile(const std::string& path) {
+LoadResult WithParameters(const Model& model, const ParameterOverrides& overrides) {
+  if (!model.document) {
+    LoadResult result;
+    result.errors.push_back({"", "this model was not compiled from a file", "load it with LoadMechanismFile"});
+    return result;
+  }
+  ParameterOverrides merged;
+  for (const auto& p : model.parameters)
+    if (p.overridden) merged[p.name] = p.value;
+  for (const auto& kv : overrides) merged[kv.first] = kv.second;
+  return LoadMechanismText(*model.document, model.source, merged);
+}
+
+LoadResult LoadMechanismFile(const std::string& path, const ParameterOverrides& overrides) {
   LoadResult result;
   auto fail = [&](const std::string& msg, const std::string& fix) {
     result.errors.push_back({"", msg, fix});
@@ -1589,7 +1756,7 @@ LoadResult LoadMechanismFile(const std::string& path) {
   const bool ok = ReadStream(fd, &text, &why, 10000);
   if (!standard_input) ::close(fd);
   if (!ok) return fail("cannot read '" + path + "': " + why, "give a complete mechanism JSON file");
-  return LoadMechanismText(text, standard_input ? "<stdin>" : path);
+  return LoadMechanismText(text, standard_input ? "<stdin>" : path, overrides);
 }
 
 }  // namespace mechkin

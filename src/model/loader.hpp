@@ -5,6 +5,7 @@
 // loader never throws for bad input.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,7 +31,13 @@ struct LoadResult {
 /// Largest file the loader reads (bytes).
 constexpr std::size_t kMaxFileBytes = 256u << 20;
 
-LoadResult LoadMechanismFile(const std::string& path);
-LoadResult LoadMechanismText(const std::string& text, const std::string& source_name);
+/// Parameter values that replace the file's ("--set crank=105").
+using ParameterOverrides = std::map<std::string, double>;
+
+LoadResult LoadMechanismFile(const std::string& path, const ParameterOverrides& overrides = {});
+LoadResult LoadMechanismText(const std::string& text, const std::string& source_name,
+                             const ParameterOverrides& overrides = {});
+/// The model compiled again with other parameter values (the same file text).
+LoadResult WithParameters(const Model& model, const ParameterOverrides& overrides);
 
 }  // namespace mechkin

@@ -33,4 +33,10 @@ bool Model::HasForces() const {
   return false;
 }
 
+const Parameter* Model::FindParameter(const std::string& name) const {
+  for (const auto& p : parameters)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
 }  // namespace mechkin

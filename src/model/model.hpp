@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -108,6 +109,16 @@ struct Analysis {
   int steps = 100;
 };
 
+/// A named number of the file ("parameters"), in the units of the places that use it.
+struct Parameter {
+  std::string name;
+  double value = 0;
+  std::string expression;              // non-empty when defined from other parameters
+  std::optional<double> tolerance;     // ± band (tolerance stack-up)
+  std::optional<double> min, max;      // sweep range (--samples)
+  bool overridden = false;             // value set by --set / with_parameters
+};
+
 struct Expect {
   std::optional<int> grubler, mobility, redundant, idle;
   std::optional<std::string> driven;  // "full", "under", "over"
@@ -127,6 +138,11 @@ struct Model {
   std::optional<Analysis> analysis;
   Expect expect;
   double characteristic_length = 1.0;  // m; scale for every length tolerance
+  std::vector<Parameter> parameters;
+  /// The file's text, to compile variants with other parameter values.
+  std::shared_ptr<const std::string> document;
+
+  const Parameter* FindParameter(const std::string& name) const;
 
   int num_bodies() const { return static_cast<int>(bodies.size()); }
   std::string BodyName(BodyIndex b) const { return b == kGround ? "ground" : bodies[b].name; }

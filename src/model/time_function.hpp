@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <map>
+#include <stdexcept>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,10 +15,14 @@ namespace mechkin {
 
 /// Bad expression text; `column` is 1-based in the expression string.
 struct ExpressionError : std::runtime_error {
-  ExpressionError(const std::string& what, int column)
-      : std::runtime_error(what), column(column) {}
+  ExpressionError(const std::string& what, int column, std::string unknown_name = "")
+      : std::runtime_error(what), column(column), unknown_name(std::move(unknown_name)) {}
   int column;
+  std::string unknown_name;  // set when the error is an unknown name (for did-you-mean)
 };
+
+/// Named constants an expression may use besides t and pi (the file's parameters).
+using ExpressionSymbols = std::map<std::string, double>;
 
 /// A parsed expression in `t`. Grammar (format-v1): + - * / ^ (right-assoc.,
 /// binds tighter than unary minus), parentheses, numbers, `t`, `pi`, and
@@ -25,8 +31,13 @@ class Expression {
  public:
   static constexpr int kMaxNesting = 64;       // parentheses / calls / signs / powers
   static constexpr size_t kMaxLength = 65536;  // characters
-  /// Throws ExpressionError naming the column of the bad token.
-  static Expression Parse(const std::string& text);
+  /// Throws ExpressionError naming the column of the bad token. `symbols`: named
+  /// constants (parameters) replaced by their values; `allow_time` false for
+  /// expressions that must be constants (numbers of the geometry).
+  static Expression Parse(const std::string& text, const ExpressionSymbols* symbols = nullptr,
+                          bool allow_time = true);
+  /// Identifiers reserved by the grammar (t, pi and the function names).
+  static bool IsReservedName(const std::string& name);
   /// Value and derivatives at t. Throws JetDomainError outside the domain.
   Jet Eval(double t) const;
   const std::string& text() const { return text_; }

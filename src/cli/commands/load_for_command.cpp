@@ -1,17 +1,35 @@
+#include <cmath>
+#include <cstdlib>
 #include "cli/commands/load_for_command.hpp"
 
 #include "model/loader.hpp"
 
 namespace mechkin {
 
-std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err) {
-  LoadResult loaded = LoadMechanismFile(file);
+std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err, const ParameterOverrides& overrides) {
+  LoadResult loaded = LoadMechanismFile(file, overrides);
   for (const auto& w : loaded.warnings) err << file << ": warning: " << w.ToString() << "\n";
   if (!loaded.ok()) {
     for (const auto& e : loaded.errors) err << file << ": error: " << e.ToString() << "\n";
     return std::nullopt;
   }
   return std::move(loaded.model);
+}
+
+bool ParseOverrides(const std::vector<std::string>& settings, ParameterOverrides* out, std::ostream& err) {
+  for (const auto& s : settings) {
+    const auto eq = s.find('=');
+    const std::string name = s.substr(0, eq == std::string::npos ? 0 : eq);
+    const std::string value = eq == std::string::npos ? "" : s.substr(eq + 1);
+    char* end = nullptr;
+    const double v = value.empty() ? 0 : std::strtod(value.c_str(), &end);
+    if (name.empty() || value.empty() || end != value.c_str() + value.size() || !std::isfinite(v)) {
+      err << "mechkin: --set '" << s << "': expected NAME=NUMBER, e.g. --set crank=105\n";
+      return false;
+    }
+    (*out)[name] = v;
+  }
+  return true;
 }
 
 }  // namespace mechkin

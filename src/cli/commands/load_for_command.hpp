@@ -6,11 +6,17 @@
 #include <ostream>
 #include <string>
 
-#include "model/model.hpp"
+#include <vector>
+
+#include "model/loader.hpp"
 
 namespace mechkin {
 
 /// The compiled model, or nothing when the file is invalid (its errors printed).
-std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err);
+/// `overrides`: --set values of the file's parameters.
+std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err,
+                                    const ParameterOverrides& overrides = {});
+/// Reads "--set NAME=NUMBER" options; false (the problem printed) for a malformed one.
+bool ParseOverrides(const std::vector<std::string>& settings, ParameterOverrides* out, std::ostream& err);
 
 }  // namespace mechkin

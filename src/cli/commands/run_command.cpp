@@ -46,6 +46,10 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_option("--bodies", o->bodies, "Bodies whose columns are written (comma-separated; none: '')")->delimiter(',');
   cmd->add_option("--outputs", o->outputs, "Outputs whose columns are written (comma-separated)")->delimiter(',');
+  cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
+  cmd->add_option("--sensitivity", o->sensitivity,
+                  "Parameters (comma-separated): adds d(column)/d(parameter) for every body and output column")
+      ->delimiter(',');
   cmd->callback([o, cmd] {
     o->bodies_given = cmd->count("--bodies") > 0;
     o->outputs_given = cmd->count("--outputs") > 0;
@@ -149,6 +153,7 @@ AnalysisOptions AnalysisOptionsOf(const RunOptions& o, const Model& model, const
   a.tolerance = o.tolerance;
   a.keep_step_diagnostics = false;
   a.forces = layout.options().forces;
+  a.sensitivity_parameters = layout.options().sensitivity;
   if (o.bodies_given || o.outputs_given) {
     // Only the bodies the table shows, or that its outputs read, are needed.
     a.needed_bodies = layout.NeededBodies(model);
@@ -170,7 +175,9 @@ void PrintStats(const AnalysisReport& rep, const std::vector<StepDiagnostics>& s
 }  // namespace
 
 int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
-  const std::optional<Model> loaded = LoadForCommand(o.file, err);
+  ParameterOverrides overrides;
+  if (!ParseOverrides(o.set, &overrides, err)) return 2;
+  const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides);
   if (!loaded) return 1;
   const Model& model = *loaded;
   TableOptions topt;
@@ -181,6 +188,13 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   topt.forces = (o.forces || model.HasForces()) && !o.no_forces;
   for (const auto& b : o.bodies) if (!b.empty()) topt.bodies.push_back(b);
   for (const auto& x : o.outputs) if (!x.empty()) topt.outputs.push_back(x);
+  for (const auto& p : o.sensitivity) {
+    if (!model.FindParameter(p)) {
+      err << "mechkin run: --sensitivity: no parameter '" << p << "' in " << o.file << "\n";
+      return 2;
+    }
+    topt.sensitivity.push_back(p);
+  }
   std::unique_ptr<MotionLayout> layout;
   try {
     layout = std::make_unique<MotionLayout>(model, topt);

@@ -23,6 +23,8 @@ struct RunOptions {
   std::vector<std::string> bodies;   // --bodies: subset of body columns
   std::vector<std::string> outputs;  // --outputs: subset of output columns
   bool bodies_given = false, outputs_given = false;
+  std::vector<std::string> set;          // --set NAME=VALUE: parameter overrides
+  std::vector<std::string> sensitivity;  // --sensitivity: parameters to differentiate by
 };
 
 void SetupRunCommand(CLI::App& app, RunOptions* options);
