@@ -29,6 +29,49 @@ void AddExpectations(const Model& m, CheckReport* r) {
            when_assembled(ExpectValue::Of(std::string(DrivingStatusName(mob.driving_status)))));
 }
 
+struct JointPoint {
+  std::string joint;
+  Vec3 point, axis;  // global, at the design pose (SI)
+  bool has_axis;
+};
+
+// The joints (and distance-link ends) attached to body b, with their design points.
+std::vector<JointPoint> JointPointsOf(const Model& m, BodyIndex b) {
+  std::vector<JointPoint> out;
+  const Body& body = m.bodies[b];
+  const Mat3 A = CalcA(body.euler);
+  for (const Joint& j : m.joints) {
+    if (j.body1 != b && j.body2 != b) continue;
+    const JointFrame& f = j.body1 == b ? j.frame1 : j.frame2;
+    const bool axis = j.type != JointType::Spherical && j.type != JointType::Distance;
+    out.push_back({j.name, body.position + A * f.origin, A * f.h, axis});
+  }
+  return out;
+}
+
+// Link lengths and axis angles per body (at most 8 joints a body: 28 pairs).
+void AddGeometry(const Model& m, CheckReport* r) {
+  const double len = 1 / m.units.length_to_si, ang = 1 / m.units.angle_to_si;
+  for (int b = 0; b < m.num_bodies(); ++b) {
+    const std::vector<JointPoint> pts = JointPointsOf(m, b);
+    if (pts.size() < 2) continue;
+    BodyGeometry g;
+    g.body = m.bodies[b].name;
+    for (size_t i = 0; i < pts.size() && i < 8; ++i)
+      for (size_t k = i + 1; k < pts.size() && k < 8; ++k) {
+        g.lengths.push_back({pts[i].joint, pts[k].joint, (pts[i].point - pts[k].point).norm() * len});
+        if (pts[i].has_axis && pts[k].has_axis) {
+          const double c = std::clamp(pts[i].axis.dot(pts[k].axis), -1.0, 1.0);
+          g.angles.push_back({pts[i].joint, pts[k].joint, std::acos(c) * ang});
+        }
+      }
+    r->geometry.push_back(std::move(g));
+  }
+  r->parameters = m.parameters;
+  r->length_unit = m.units.length_name;
+  r->angle_unit = m.units.angle_name;
+}
+
 }  // namespace
 
 CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
@@ -61,6 +104,7 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   if (r.mobility->locked)
     r.warnings.push_back({"/joints", r.mobility->verdict, "fix the joints before adding or removing drivers"});
   AddExpectations(m, &r);
+  AddGeometry(m, &r);
   return r;
 }
 

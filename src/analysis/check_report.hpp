@@ -31,6 +31,17 @@ struct ExpectationResult {
   bool held = false;
 };
 
+/// What the file's numbers make of each body (issue "Parametric designs", item 2):
+/// distances between its joint points and angles between its joint axes, in the
+/// file's units, so a slip (a point typed in m in a mm file) shows before a run.
+struct BodyGeometry {
+  struct Length { std::string joint1, joint2; double value; };
+  struct AxisAngle { std::string joint1, joint2; double value; };  // between the joints' axes
+  std::string body;
+  std::vector<Length> lengths;
+  std::vector<AxisAngle> angles;
+};
+
 struct CheckReport {
   std::string file;
   bool valid = false;
@@ -42,6 +53,9 @@ struct CheckReport {
   int dof_after_drivers_count = 0;  // Grübler count − drivers
   std::optional<MobilityReport> mobility;
   std::vector<ExpectationResult> expectations;
+  std::vector<BodyGeometry> geometry;       // per moving body with two or more joints
+  std::vector<Parameter> parameters;        // resolved values
+  std::string length_unit, angle_unit;      // of geometry and parameters
   /// Valid and every expectation held.
   bool ok() const;
 };

@@ -107,6 +107,61 @@ void PrintErrors(const CheckReport& r, std::ostream& out) {
   }
 }
 
+std::string Short(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.7g", v);
+  return buf;
+}
+
+// "  crank: bearing–crankpin 40 mm" per body, axis angles only where not 0.
+void PrintGeometry(const CheckReport& r, std::ostream& out) {
+  if (!r.parameters.empty()) {
+    out << "  parameters:";
+    for (const auto& p : r.parameters) {
+      out << " " << p.name << " = " << Short(p.value);
+      if (p.tolerance) out << " ±" << Short(*p.tolerance);
+      if (p.overridden) out << " (set)";
+      else if (!p.expression.empty()) out << " (= " << p.expression << ")";
+      out << (&p == &r.parameters.back() ? "\n" : ";");
+    }
+  }
+  if (r.geometry.empty()) return;
+  out << "  geometry (joint-point distances, " << r.length_unit << "; angles between joint axes, " << r.angle_unit
+      << "):\n";
+  for (const auto& g : r.geometry) {
+    out << "    " << g.body << ":";
+    for (const auto& l : g.lengths) out << " " << l.joint1 << "-" << l.joint2 << " " << Short(l.value) << ";";
+    for (const auto& a : g.angles)
+      if (a.value > 1e-9) out << " axes " << a.joint1 << "/" << a.joint2 << " " << Short(a.value) << ";";
+    out << "\n";
+  }
+}
+
+json GeometryJson(const CheckReport& r) {
+  json bodies = json::array();
+  for (const auto& g : r.geometry) {
+    json lengths = json::array(), angles = json::array();
+    for (const auto& l : g.lengths) lengths.push_back({{"joints", {l.joint1, l.joint2}}, {"distance", l.value}});
+    for (const auto& a : g.angles) angles.push_back({{"joints", {a.joint1, a.joint2}}, {"angle", a.value}});
+    bodies.push_back({{"body", g.body}, {"lengths", lengths}, {"axis_angles", angles}});
+  }
+  return {{"length_unit", r.length_unit}, {"angle_unit", r.angle_unit}, {"bodies", bodies}};
+}
+
+json ParametersJson(const std::vector<Parameter>& parameters) {
+  json j = json::object();
+  for (const auto& p : parameters) {
+    json e = {{"value", p.value}};
+    if (!p.expression.empty()) e["expression"] = p.expression;
+    if (p.tolerance) e["tolerance"] = *p.tolerance;
+    if (p.min) e["min"] = *p.min;
+    if (p.max) e["max"] = *p.max;
+    if (p.overridden) e["set"] = true;
+    j[p.name] = e;
+  }
+  return j;
+}
+
 void PrintSummary(const CheckReport& r, std::ostream& out) {
   out << (r.name.empty() ? "(unnamed)" : r.name) << "\n";
   out << "  bodies: " << r.bodies << " moving\n  joints: ";
@@ -119,6 +174,7 @@ void PrintSummary(const CheckReport& r, std::ostream& out) {
   out << "  drivers: " << r.drivers << "\n";
   out << "  Grübler–Kutzbach count: " << r.grubler << " (after drivers: " << r.dof_after_drivers_count << ")\n";
   if (r.mobility) PrintMobility(*r.mobility, r.drivers, out);
+  PrintGeometry(r, out);
 }
 
 }  // namespace
@@ -142,6 +198,8 @@ json CheckReportJson(const CheckReport& r) {
   j["grubler"] = r.grubler;
   j["dof_after_drivers_count"] = r.dof_after_drivers_count;
   if (r.mobility) j["mobility"] = MobilityJson(*r.mobility, r.drivers);
+  j["geometry"] = GeometryJson(r);
+  j["parameters"] = ParametersJson(r.parameters);
   return j;
 }
 

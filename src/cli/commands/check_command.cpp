@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "analysis/check_report.hpp"
+#include "cli/commands/load_for_command.hpp"
 #include "io/check_report_writer.hpp"
 
 namespace mechkin {
@@ -13,14 +14,17 @@ void SetupCheckCommand(CLI::App& app, CheckOptions* options) {
   cmd->add_option("--format", options->format, "Report format")
       ->check(CLI::IsMember({"text", "json"}))
       ->default_str("text");
+  cmd->add_option("--set", options->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
 }
 
-int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& /*err*/) {
+int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) {
+  ParameterOverrides overrides;
+  if (!ParseOverrides(options.set, &overrides, err)) return 2;
   std::vector<CheckReport> reports;
   for (const auto& f : options.files) {
     CheckReport r;
     try {
-      r = CheckFile(f);
+      r = CheckLoaded(f, LoadMechanismFile(f, overrides));
     } catch (const std::exception& e) {
       // Defensive: a failure on one file must not take the others' reports with it.
       r = CheckReport{};

@@ -18,6 +18,7 @@ namespace mechkin {
 struct CheckOptions {
   std::vector<std::string> files;
   std::string format = "text";  // text | json
+  std::vector<std::string> set;  // --set NAME=VALUE
 };
 
 void SetupCheckCommand(CLI::App& app, CheckOptions* options);
