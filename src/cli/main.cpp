@@ -8,6 +8,7 @@
 #include "cli/commands/bench_command.hpp"
 #include "cli/commands/check_command.hpp"
 #include "cli/commands/run_command.hpp"
+#include "cli/commands/tolerance_command.hpp"
 #include "cli/commands/view_command.hpp"
 
 int main(int argc, char** argv) {
@@ -23,6 +24,8 @@ int main(int argc, char** argv) {
     mechkin::SetupBenchCommand(app, &bench);
     mechkin::ViewOptions view;
     mechkin::SetupViewCommand(app, &view);
+    mechkin::ToleranceCommandOptions tolerance;
+    mechkin::SetupToleranceCommand(app, &tolerance);
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -34,6 +37,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) code = mechkin::RunRun(run, std::cout, std::cerr);
     if (app.got_subcommand("bench")) code = mechkin::RunBenchCommand(bench, std::cout, std::cerr);
     if (app.got_subcommand("view")) code = mechkin::RunView(view, std::cout, std::cerr);
+    if (app.got_subcommand("tolerance")) code = mechkin::RunToleranceCommand(tolerance, std::cout, std::cerr);
     // A report that could not be written is a failure, not a success.
     std::cout.flush();
     if (!std::cout) {

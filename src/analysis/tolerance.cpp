@@ -1,0 +1,177 @@
+#include "analysis/tolerance.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <random>
+#include <thread>
+
+#include "model/loader.hpp"
+
+namespace mechkin {
+
+int ThreadCount(int threads) {
+  if (threads > 0) return threads;
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+void ParallelFor(int count, int threads, const std::function<void(int, int)>& job) {
+  const int n = std::min(ThreadCount(threads), std::max(count, 1));
+  std::atomic<int> next{0};
+  auto work = [&](int thread) {
+    for (int i = next++; i < count; i = next++) job(i, thread);
+  };
+  std::vector<std::thread> pool;
+  for (int k = 1; k < n; ++k) pool.emplace_back(work, k);
+  work(0);
+  for (auto& th : pool) th.join();
+}
+
+namespace {
+
+TableOptions OutputTable(const Model& model, int order, std::vector<std::string> sensitivity) {
+  TableOptions table;
+  table.order = order;
+  table.all_bodies = model.outputs.empty();  // no outputs: the bodies' columns
+  table.sensitivity = std::move(sensitivity);
+  return table;
+}
+
+// The columns analysed: every body/output column of the nominal run.
+std::vector<int> ValueColumns(const Motion& m) {
+  std::vector<int> cols;
+  for (int c = 0; c < m.cols(); ++c) {
+    const ColumnDescriptor& d = m.columns()[c];
+    if (d.wrt < 0 && d.quantity != Quantity::Time && !d.IsDiagnostic()) cols.push_back(c);
+  }
+  return cols;
+}
+
+// Worst case, RSS and the ranking of one column from its sensitivity columns.
+ToleranceColumn LinearStack(const Motion& m, int col, const ToleranceReport& rep) {
+  ToleranceColumn tc;
+  tc.name = m.columns()[col].name;
+  tc.unit = m.columns()[col].unit;
+  std::vector<int> sens;
+  for (const auto& p : rep.parameters) sens.push_back(m.layout().Find(tc.name + "/d(" + p + ")"));
+  int worst_row = 0;
+  for (int r = 0; r < m.rows(); ++r) {
+    double wc = 0, ss = 0;
+    for (size_t p = 0; p < sens.size(); ++p) {
+      const double c = std::abs(m.at(r, sens[p])) * rep.tolerances[p];
+      wc += c;
+      ss += c * c;
+    }
+    tc.worst_case.push_back(wc);
+    tc.rss.push_back(std::sqrt(ss));
+    if (wc > tc.max_worst_case) tc.max_worst_case = wc, tc.t_worst_case = m.at(r, 0), worst_row = r;
+    if (tc.rss.back() > tc.max_rss) tc.max_rss = tc.rss.back(), tc.t_rss = m.at(r, 0);
+  }
+  for (size_t p = 0; p < sens.size(); ++p)
+    tc.contributions.emplace_back(rep.parameters[p], std::abs(m.at(worst_row, sens[p])) * rep.tolerances[p]);
+  std::stable_sort(tc.contributions.begin(), tc.contributions.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  return tc;
+}
+
+// Per thread: the largest |deviation| and the running sums per (column, row).
+struct MonteCarloSums {
+  std::vector<double> max_abs, sum, sum_sq;
+  int runs = 0, failed = 0;
+};
+
+void RunSample(const Model& model, const ParameterOverrides& set, const Motion& nominal, const std::vector<int>& cols,
+               const ToleranceOptions& options, MonteCarloSums* acc) {
+  LoadResult variant = WithParameters(model, set);
+  if (!variant.ok()) {
+    ++acc->failed;
+    return;
+  }
+  const Motion m = RunMotion(*variant.model, options.analysis, OutputTable(model, options.order, {}));
+  if (!m.complete || m.rows() != nominal.rows()) {
+    ++acc->failed;
+    return;
+  }
+  ++acc->runs;
+  const int rows = nominal.rows();
+  for (size_t k = 0; k < cols.size(); ++k) {
+    const int same = m.layout().Find(nominal.columns()[cols[k]].name);
+    for (int r = 0; r < rows; ++r) {
+      const double dev = m.at(r, same) - nominal.at(r, cols[k]);
+      const size_t i = k * rows + r;
+      acc->max_abs[i] = std::max(acc->max_abs[i], std::abs(dev));
+      acc->sum[i] += dev;
+      acc->sum_sq[i] += dev * dev;
+    }
+  }
+}
+
+void MonteCarlo(const Model& model, const Motion& nominal, const std::vector<int>& cols,
+                const ToleranceOptions& options, ToleranceReport* rep) {
+  // The samples are drawn up front in one sequence: the same seed gives the same
+  // variants whatever the number of threads.
+  std::mt19937_64 rng(options.seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<ParameterOverrides> samples(options.monte_carlo);
+  for (auto& s : samples)
+    for (size_t p = 0; p < rep->parameters.size(); ++p)
+      s[rep->parameters[p]] = model.FindParameter(rep->parameters[p])->value + unit(rng) * rep->tolerances[p];
+  const size_t cells = cols.size() * nominal.rows();
+  std::vector<MonteCarloSums> acc(ThreadCount(options.threads),
+                                  MonteCarloSums{std::vector<double>(cells), std::vector<double>(cells),
+                                                 std::vector<double>(cells), 0, 0});
+  ParallelFor(options.monte_carlo, options.threads,
+              [&](int i, int th) { RunSample(model, samples[i], nominal, cols, options, &acc[th]); });
+  MonteCarloSums total = acc[0];
+  for (size_t th = 1; th < acc.size(); ++th) {
+    for (size_t i = 0; i < cells; ++i) {
+      total.max_abs[i] = std::max(total.max_abs[i], acc[th].max_abs[i]);
+      total.sum[i] += acc[th].sum[i];
+      total.sum_sq[i] += acc[th].sum_sq[i];
+    }
+    total.runs += acc[th].runs;
+    total.failed += acc[th].failed;
+  }
+  rep->samples = total.runs;
+  rep->failed_samples = total.failed;
+  const int rows = nominal.rows();
+  for (size_t k = 0; k < cols.size() && total.runs > 1; ++k) {
+    ToleranceColumn& tc = rep->columns[k];
+    for (int r = 0; r < rows; ++r) {
+      const size_t i = k * rows + r;
+      const double mean = total.sum[i] / total.runs;
+      const double sd = std::sqrt(std::max(0.0, (total.sum_sq[i] - total.runs * mean * mean) / (total.runs - 1)));
+      if (total.max_abs[i] > tc.mc_max_deviation) tc.mc_max_deviation = total.max_abs[i], tc.t_mc_max = rep->t[r];
+      if (sd > tc.mc_max_std) tc.mc_max_std = sd, tc.t_mc_std = rep->t[r];
+    }
+  }
+}
+
+}  // namespace
+
+ToleranceReport AnalyzeTolerances(const Model& model, const ToleranceOptions& options) {
+  ToleranceReport rep;
+  rep.seed = options.seed;
+  for (const auto& p : model.parameters)
+    if (p.tolerance && *p.tolerance > 0) {
+      rep.parameters.push_back(p.name);
+      rep.tolerances.push_back(*p.tolerance);
+    }
+  if (rep.parameters.empty()) {
+    rep.message = "no parameter declares a tolerance: write e.g. \"rod\": {\"value\": 120, \"tolerance\": 0.05}";
+    return rep;
+  }
+  const Motion nominal = RunMotion(model, options.analysis, OutputTable(model, options.order, rep.parameters));
+  if (!nominal.complete) {
+    rep.message = "the nominal run did not complete: " + nominal.stop.message;
+    return rep;
+  }
+  for (int r = 0; r < nominal.rows(); ++r) rep.t.push_back(nominal.at(r, 0));
+  const std::vector<int> cols = ValueColumns(nominal);
+  for (int c : cols) rep.columns.push_back(LinearStack(nominal, c, rep));
+  if (options.monte_carlo > 0) MonteCarlo(model, nominal, cols, options, &rep);
+  rep.ok = true;
+  return rep;
+}
+
+}  // namespace mechkin

@@ -1,0 +1,59 @@
+// Tolerance stack-up along the motion (issue "Parametric designs", item 5).
+//
+// Linear estimate from the exact sensitivities (analysis/sensitivity.hpp): per
+// output column and row, with tolerances ±τ_p,
+//   worst case  Σ_p |∂o/∂p| τ_p        (every parameter at its limit, signs aligned)
+//   RSS         √(Σ_p (∂o/∂p τ_p)²)    (the statistical stack: ±τ read as ±3σ)
+// and the parameters ranked by their share at the worst-case row. The Monte-Carlo
+// check samples every parameter uniformly within ±τ (seeded, reproducible), runs
+// each variant and reports the largest deviation from the nominal motion seen and
+// the largest standard deviation; for uniform sampling the linear theory gives
+// std = RSS/√3 and max → worst case, so the two methods check each other.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "analysis/motion.hpp"
+
+namespace mechkin {
+
+struct ToleranceOptions {
+  int order = 0;             // derivative orders of the outputs analysed
+  int monte_carlo = 0;       // samples (0: linear estimate only)
+  unsigned long seed = 1;
+  int threads = 0;           // 0: all cores
+  AnalysisOptions analysis;  // tolerance etc. of every run
+};
+
+struct ToleranceColumn {
+  std::string name, unit;
+  std::vector<double> worst_case, rss;  // per row
+  double max_worst_case = 0, t_worst_case = 0, max_rss = 0, t_rss = 0;
+  std::vector<std::pair<std::string, double>> contributions;  // |∂o/∂p| τ_p at the worst-case row, largest first
+  // Monte-Carlo (when samples > 0)
+  double mc_max_deviation = 0, t_mc_max = 0, mc_max_std = 0, t_mc_std = 0;
+};
+
+struct ToleranceReport {
+  bool ok = false;
+  std::string message;  // why not, when !ok
+  std::vector<std::string> parameters;
+  std::vector<double> tolerances;
+  std::vector<double> t;  // the rows' times
+  std::vector<ToleranceColumn> columns;
+  int samples = 0, failed_samples = 0;  // Monte-Carlo variants run / that did not complete
+  unsigned long seed = 0;
+};
+
+/// The stack-up over the parameters that declare a tolerance.
+ToleranceReport AnalyzeTolerances(const Model& model, const ToleranceOptions& options);
+
+/// Runs `count` jobs on `threads` threads (0: all cores); job(i) for i = 0..count−1.
+void ParallelFor(int count, int threads, const std::function<void(int index, int thread)>& job);
+/// The number of threads ParallelFor uses for `threads`.
+int ThreadCount(int threads);
+
+}  // namespace mechkin

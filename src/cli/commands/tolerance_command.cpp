@@ -1,0 +1,55 @@
+#include "cli/commands/tolerance_command.hpp"
+
+#include <sstream>
+
+#include "analysis/tolerance.hpp"
+#include "cli/commands/load_for_command.hpp"
+#include "io/output_file.hpp"
+#include "io/tolerance_report_writer.hpp"
+
+namespace mechkin {
+
+void SetupToleranceCommand(CLI::App& app, ToleranceCommandOptions* o) {
+  CLI::App* cmd = app.add_subcommand(
+      "tolerance", "Tolerance stack-up of the outputs: worst case and RSS from exact sensitivities, Monte-Carlo check");
+  cmd->add_option("file", o->file, "Mechanism file whose parameters declare tolerances")->required();
+  cmd->add_option("-o,--output", o->output, "Report file (default: stdout); written atomically");
+  cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option("--order", o->order, "Derivative orders of the outputs analysed (default 0: positions)")
+      ->check(CLI::Range(0, 4));
+  cmd->add_option("--monte-carlo", o->monte_carlo, "Also sample N variants uniformly within the tolerances")
+      ->check(CLI::Range(0, 100000000));
+  cmd->add_option("--seed", o->seed, "Seed of the Monte-Carlo samples (default 1)");
+  cmd->add_option("--threads", o->threads, "Threads for the Monte-Carlo runs (default: all cores)")
+      ->check(CLI::Range(0, 4096));
+  cmd->add_option("--tol", o->tolerance, "Position tolerance of every run (default 1e-10)")->check(CLI::Range(1e-15, 1e-3));
+  cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
+}
+
+int RunToleranceCommand(const ToleranceCommandOptions& o, std::ostream& out, std::ostream& err) {
+  ParameterOverrides overrides;
+  if (!ParseOverrides(o.set, &overrides, err)) return 2;
+  const std::optional<Model> model = LoadForCommand(o.file, err, overrides);
+  if (!model) return 1;
+  ToleranceOptions options;
+  options.order = o.order;
+  options.monte_carlo = o.monte_carlo;
+  options.seed = o.seed;
+  options.threads = o.threads;
+  options.analysis.tolerance = o.tolerance;
+  options.analysis.keep_step_diagnostics = false;
+  const ToleranceReport report = AnalyzeTolerances(*model, options);
+  std::ostringstream text;
+  if (o.format == "json") text << ToleranceReportJson(report).dump(2) << "\n";
+  else PrintToleranceReport(report, text);
+  OutputFile file;
+  std::string why;
+  if (!file.Open(o.output, {o.file}, &why, &out) || !file.Write(text.str()) || !file.Commit("", &why)) {
+    err << "mechkin tolerance: " << why << "\n";
+    return 1;
+  }
+  if (!report.ok) err << "mechkin tolerance: " << o.file << ": " << report.message << "\n";
+  return report.ok ? 0 : 1;
+}
+
+}  // namespace mechkin

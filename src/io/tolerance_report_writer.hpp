@@ -1,0 +1,14 @@
+// `mechkin tolerance` reports as text and JSON, from the typed ToleranceReport.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "analysis/tolerance.hpp"
+
+namespace mechkin {
+
+nlohmann::json ToleranceReportJson(const ToleranceReport& report);
+void PrintToleranceReport(const ToleranceReport& report, std::ostream& out);
+
+}  // namespace mechkin
