@@ -17,7 +17,7 @@ from numpy.lib.stride_tricks import as_strided as _as_strided
 
 from . import _mechkin
 
-__all__ = ["load", "loads", "Model", "Motion", "CheckReport", "FormatError", "Diagnostic", "RunStop"]
+__all__ = ["load", "loads", "Model", "Motion", "CheckReport", "FormatError", "Diagnostic", "RunStop", "sweep"]
 
 
 class Diagnostic(tuple):
@@ -46,8 +46,8 @@ class FormatError(ValueError):
         super().__init__("\n".join(lines))
 
 
-def _compile(text, source):
-    core, errors, warnings = _mechkin.compile(text, source)
+def _compile(text, source, overrides=None):
+    core, errors, warnings = _mechkin.compile(text, source, dict(overrides or {}))
     if core is None:
         raise FormatError(source, errors)
     return Model(core)
@@ -113,26 +113,39 @@ class Model:
     units = property(lambda self: dict(self._info["units"]))
     analysis = property(lambda self: None if self._info["analysis"] is None else dict(self._info["analysis"]))
     warnings = property(lambda self: [Diagnostic(*d) for d in self._info["warnings"]])
+    parameters = property(lambda self: {k: v["value"] for k, v in self._info["parameters"].items()},
+                          doc="the file's parameters and their (resolved) values")
+    parameter_info = property(lambda self: {k: dict(v) for k, v in self._info["parameters"].items()},
+                              doc="per parameter: value, tolerance, min, max, expression")
+
+    def with_parameters(self, **values):
+        """The same file compiled with other parameter values (like `mechkin run --set`).
+        Raises FormatError when a value makes the geometry invalid."""
+        merged = dict(self._core.overrides)
+        merged.update({k: float(v) for k, v in values.items()})
+        return _compile(self._core.text, self._core.source, merged)
 
     def check(self):
         """Grübler count, rank mobility, redundancy, idle freedoms, driving status, expectations."""
         return CheckReport(self._core.check())
 
     def run(self, order=3, tol=1e-10, solver="newton", formulation="omega", bodies=None, outputs=None,
-            si=False, start=None, end=None, steps=None, forces=None):
+            si=False, start=None, end=None, steps=None, forces=None, sensitivity=None):
         """The driven kinematic analysis. Returns a Motion; a run that stops early
         returns the rows computed with motion.complete False and motion.stop saying why.
         forces: driver efforts, joint reactions and energies (default: when the
-        file has inertia or loads; needs order >= 2, rates with order >= 3)."""
+        file has inertia or loads; needs order >= 2, rates with order >= 3).
+        sensitivity: parameter names; adds d(column)/d(parameter) columns for every
+        body and output column (motion.sensitivity(column, parameter))."""
         norm = lambda sel: None if sel is None else ([sel] if isinstance(sel, str) else list(sel))
-        bodies, outputs = norm(bodies), norm(outputs)
+        bodies, outputs, sensitivity = norm(bodies), norm(outputs), norm(sensitivity) or []
         core = self._core.run(int(order), float(tol), solver, formulation, bodies, outputs, bool(si),
-                              start, end, steps, forces)
+                              start, end, steps, forces, sensitivity)
         return Motion(self, core, dict(order=int(order), si=bool(si), bodies=bodies, outputs=outputs,
-                                       forces=core.forces))
+                                       forces=core.forces, sensitivity=sensitivity))
 
     def __reduce__(self):
-        return (_compile, (self._core.text, self._core.source))
+        return (_compile, (self._core.text, self._core.source, dict(self._core.overrides)))
 
     def __repr__(self):
         return "Model(%r, %d bodies, %d joints, %d drivers)" % (self.name, len(self.bodies), len(self.joints), len(self.drivers))
@@ -253,6 +266,10 @@ class Motion:
     def units(self):
         return {c["name"]: c["unit"] for c in self.columns}
 
+    def sensitivity(self, column, parameter):
+        """d(column)/d(parameter) per row (run with sensitivity=[parameter])."""
+        return self["%s/d(%s)" % (column, parameter)]
+
     @property
     def indeterminate_reactions(self):
         """With redundant equations: the reaction components statics cannot determine."""
@@ -306,7 +323,34 @@ class Motion:
 def _rebuild_motion(model, options, values, report):
     core = _mechkin.motion_from_state(model._core, options["order"], options["si"], options["bodies"],
                                       options["outputs"], options.get("forces", False), values, report["complete"], report["stop"],
-                                      report["message"])
+                                      report["message"], options.get("sensitivity", []))
     m = Motion(model, core, options)
     m._report = dict(report)
     return m
+
+
+def _run_variant(model, values, order, tol):
+    summary = model._core.run_variant({k: float(v) for k, v in values.items()}, int(order), float(tol))
+    summary["min"] = dict(summary["min"])
+    summary["max"] = dict(summary["max"])
+    return summary
+
+
+def sweep(model, variants, client=None, order=1, tol=1e-10, threads=None):
+    """Runs every variant (a dict of parameter values) of `model` and returns one
+    summary dict per variant, in order: parameters, status ('complete', 'invalid',
+    'assembly', 'refused', 'limit', 'singular', 'failed'), message, rows, t_stop,
+    max_condition, and the min/max of each output column over the motion.
+
+    client: a dask.distributed Client — the variants are mapped over its workers
+    (the model pickles as its file text and parameter values). Without one, local
+    threads run them (the C++ core releases the GIL)."""
+    variants = [dict(v) for v in variants]
+    if client is not None:
+        shared = client.scatter(model, broadcast=True)
+        futures = client.map(_run_variant, [shared] * len(variants), variants, order=order, tol=tol, pure=False)
+        return client.gather(futures)
+    import concurrent.futures
+    import os
+    with concurrent.futures.ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
+        return list(pool.map(lambda v: _run_variant(model, v, order, tol), variants))

@@ -13,6 +13,7 @@
 #include "analysis/motion.hpp"
 #include "io/check_report_writer.hpp"
 #include "io/table_writer.hpp"
+#include "analysis/sweep.hpp"
 #include "model/loader.hpp"
 
 namespace py = pybind11;
@@ -25,6 +26,7 @@ struct LoadedModel {
   std::shared_ptr<const Model> model;
   std::vector<Diagnostic> warnings;
   std::string text, source;
+  ParameterOverrides overrides;  // with_parameters / --set values (part of the pickled form)
 };
 
 py::list DiagnosticList(const std::vector<Diagnostic>& ds) {
@@ -34,11 +36,11 @@ py::list DiagnosticList(const std::vector<Diagnostic>& ds) {
 }
 
 // (model or None, errors, warnings)
-py::tuple Compile(const std::string& text, const std::string& source) {
+py::tuple Compile(const std::string& text, const std::string& source, const ParameterOverrides& overrides) {
   LoadResult r;
   {
     py::gil_scoped_release release;
-    r = LoadMechanismText(text, source);
+    r = LoadMechanismText(text, source, overrides);
   }
   if (!r.ok()) return py::make_tuple(py::none(), DiagnosticList(r.errors), DiagnosticList(r.warnings));
   auto m = std::make_shared<LoadedModel>();
@@ -46,6 +48,7 @@ py::tuple Compile(const std::string& text, const std::string& source) {
   m->warnings = r.warnings;
   m->text = text;
   m->source = source;
+  m->overrides = overrides;
   return py::make_tuple(m, py::list(), DiagnosticList(r.warnings));
 }
 
@@ -153,7 +156,7 @@ std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, int order, double tol, 
                                    const std::string& formulation, const std::optional<std::vector<std::string>>& bodies,
                                    const std::optional<std::vector<std::string>>& outputs, bool si,
                                    std::optional<double> start, std::optional<double> end, std::optional<int> steps,
-                                   std::optional<bool> forces) {
+                                   std::optional<bool> forces, const std::vector<std::string>& sensitivity) {
   auto model = m.model;
   if (start || end || steps) {
     auto copy = std::make_shared<Model>(*m.model);
@@ -175,7 +178,10 @@ std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, int order, double tol, 
   o.keep_step_diagnostics = false;  // the table's diagnostic columns carry them
   std::string why;
   if (!o.IsValid(&why)) throw py::value_error(why);
-  const TableOptions table = MakeTableOptions(order, si, bodies, outputs, forces.value_or(model->HasForces()));
+  TableOptions table = MakeTableOptions(order, si, bodies, outputs, forces.value_or(model->HasForces()));
+  for (const auto& p : sensitivity)
+    if (!model->FindParameter(p)) throw py::value_error("sensitivity: no parameter '" + p + "' in the model");
+  table.sensitivity = sensitivity;
   if (table.forces && order < 2) throw py::value_error("forces need order >= 2 (order 3 gives their rates too)");
   auto out = std::make_shared<PyMotion>();
   out->model = model;
@@ -195,10 +201,13 @@ std::shared_ptr<PyMotion> MotionFromState(const LoadedModel& m, int order, bool 
                                           const std::optional<std::vector<std::string>>& bodies,
                                           const std::optional<std::vector<std::string>>& outputs, bool forces,
                                           py::array_t<double, py::array::c_style | py::array::forcecast> values,
-                                          bool complete, const std::string& stop, const std::string& message) {
+                                          bool complete, const std::string& stop, const std::string& message,
+                                          const std::vector<std::string>& sensitivity) {
   auto out = std::make_shared<PyMotion>();
   out->model = m.model;
-  out->motion = std::make_unique<Motion>(MotionLayout(*m.model, MakeTableOptions(order, si, bodies, outputs, forces)));
+  TableOptions table = MakeTableOptions(order, si, bodies, outputs, forces);
+  table.sensitivity = sensitivity;
+  out->motion = std::make_unique<Motion>(MotionLayout(*m.model, table));
   if (values.ndim() != 2 || values.shape(1) != out->motion->cols()) throw py::value_error("values do not fit the layout");
   out->motion->mutable_values().assign(values.data(), values.data() + values.size());
   out->motion->complete = complete;
@@ -279,6 +288,36 @@ void ToTable(const PyMotion& pm, const std::string& path, const std::string& for
   if (!ok) throw std::runtime_error(why);
 }
 
+// One sweep variant's summary (analysis/sweep.hpp), the GIL released while it runs.
+py::dict RunVariantSummary(const LoadedModel& lm, const ParameterOverrides& values, int order, double tol) {
+  SweepOptions options;
+  options.order = order;
+  options.analysis.tolerance = tol;
+  VariantSummary v;
+  std::vector<std::string> columns;
+  {
+    py::gil_scoped_release release;
+    v = RunVariant(*lm.model, values, options);
+    columns = SweepColumns(*lm.model, order);
+  }
+  py::dict d, mins, maxs, params;
+  for (const auto& kv : values) params[py::str(kv.first)] = kv.second;
+  for (size_t k = 0; k < columns.size() && k < v.min.size(); ++k) {
+    mins[py::str(columns[k])] = v.min[k];
+    maxs[py::str(columns[k])] = v.max[k];
+  }
+  d["parameters"] = params;
+  d["status"] = v.status;
+  d["message"] = v.message;
+  d["rows"] = v.rows;
+  d["t_stop"] = v.t_stop;
+  d["max_condition"] = v.max_condition;
+  d["t_max_condition"] = v.t_max_condition;
+  d["min"] = mins;
+  d["max"] = maxs;
+  return d;
+}
+
 py::dict ModelInfo(const LoadedModel& lm) {
   const Model& m = *lm.model;
   py::dict d;
@@ -297,6 +336,17 @@ py::dict ModelInfo(const LoadedModel& lm) {
   d["outputs"] = outputs;
   d["units"] = py::dict(py::arg("length") = m.units.length_name, py::arg("angle") = m.units.angle_name);
   d["warnings"] = DiagnosticList(lm.warnings);
+  py::dict params;
+  for (const auto& p : m.parameters) {
+    py::dict e;
+    e["value"] = p.value;
+    e["tolerance"] = p.tolerance ? py::object(py::float_(*p.tolerance)) : py::object(py::none());
+    e["min"] = p.min ? py::object(py::float_(*p.min)) : py::object(py::none());
+    e["max"] = p.max ? py::object(py::float_(*p.max)) : py::object(py::none());
+    e["expression"] = p.expression;
+    params[py::str(p.name)] = e;
+  }
+  d["parameters"] = params;
   if (m.analysis)
     d["analysis"] = py::dict(py::arg("start") = m.analysis->start, py::arg("end") = m.analysis->end,
                              py::arg("steps") = m.analysis->steps);
@@ -316,7 +366,9 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def("check", &CheckModel)
       .def("run", &RunModel, py::arg("order"), py::arg("tol"), py::arg("solver"), py::arg("formulation"),
            py::arg("bodies"), py::arg("outputs"), py::arg("si"), py::arg("start"), py::arg("end"), py::arg("steps"),
-           py::arg("forces"));
+           py::arg("forces"), py::arg("sensitivity") = std::vector<std::string>{})
+      .def_readonly("overrides", &LoadedModel::overrides)
+      .def("run_variant", &RunVariantSummary, py::arg("values"), py::arg("order"), py::arg("tol"));
   py::class_<PyMotion, std::shared_ptr<PyMotion>>(mod, "CoreMotion")
       .def_property_readonly("values", &Values)
       .def("columns", &Columns)
@@ -325,6 +377,8 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def_property_readonly("order", [](const PyMotion& m) { return m.motion->layout().options().order; })
       .def_property_readonly("si", [](const PyMotion& m) { return m.motion->layout().options().si; })
       .def_property_readonly("forces", [](const PyMotion& m) { return m.motion->layout().options().forces; });
-  mod.def("compile", &Compile, py::arg("text"), py::arg("source"));
-  mod.def("motion_from_state", &MotionFromState);
+  mod.def("compile", &Compile, py::arg("text"), py::arg("source"), py::arg("overrides") = ParameterOverrides{});
+  mod.def("motion_from_state", &MotionFromState, py::arg("model"), py::arg("order"), py::arg("si"), py::arg("bodies"),
+          py::arg("outputs"), py::arg("forces"), py::arg("values"), py::arg("complete"), py::arg("stop"),
+          py::arg("message"), py::arg("sensitivity") = std::vector<std::string>{});
 }

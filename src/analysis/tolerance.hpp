@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "analysis/motion.hpp"
+#include "analysis/parallel.hpp"
 
 namespace mechkin {
 
@@ -50,10 +51,5 @@ struct ToleranceReport {
 
 /// The stack-up over the parameters that declare a tolerance.
 ToleranceReport AnalyzeTolerances(const Model& model, const ToleranceOptions& options);
-
-/// Runs `count` jobs on `threads` threads (0: all cores); job(i) for i = 0..count−1.
-void ParallelFor(int count, int threads, const std::function<void(int index, int thread)>& job);
-/// The number of threads ParallelFor uses for `threads`.
-int ThreadCount(int threads);
 
 }  // namespace mechkin

@@ -8,6 +8,7 @@
 #include "cli/commands/bench_command.hpp"
 #include "cli/commands/check_command.hpp"
 #include "cli/commands/run_command.hpp"
+#include "cli/commands/sweep_command.hpp"
 #include "cli/commands/tolerance_command.hpp"
 #include "cli/commands/view_command.hpp"
 
@@ -26,6 +27,8 @@ int main(int argc, char** argv) {
     mechkin::SetupViewCommand(app, &view);
     mechkin::ToleranceCommandOptions tolerance;
     mechkin::SetupToleranceCommand(app, &tolerance);
+    mechkin::SweepCommandOptions sweep;
+    mechkin::SetupSweepCommand(app, &sweep);
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -37,6 +40,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) code = mechkin::RunRun(run, std::cout, std::cerr);
     if (app.got_subcommand("bench")) code = mechkin::RunBenchCommand(bench, std::cout, std::cerr);
     if (app.got_subcommand("view")) code = mechkin::RunView(view, std::cout, std::cerr);
+    if (app.got_subcommand("sweep")) code = mechkin::RunSweepCommand(sweep, std::cout, std::cerr);
     if (app.got_subcommand("tolerance")) code = mechkin::RunToleranceCommand(tolerance, std::cout, std::cerr);
     // A report that could not be written is a failure, not a success.
     std::cout.flush();

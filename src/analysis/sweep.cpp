@@ -1,0 +1,164 @@
+#include "analysis/sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+
+#include "analysis/motion.hpp"
+#include "analysis/parallel.hpp"
+
+namespace mechkin {
+
+bool ParseGridAxis(const std::string& text, GridAxis* axis, std::string* error) {
+  const auto eq = text.find('=');
+  const auto c1 = text.find(':', eq == std::string::npos ? 0 : eq);
+  const auto c2 = c1 == std::string::npos ? c1 : text.find(':', c1 + 1);
+  auto number = [](const std::string& s, double* v) {
+    char* end = nullptr;
+    *v = std::strtod(s.c_str(), &end);
+    return !s.empty() && end == s.c_str() + s.size() && std::isfinite(*v);
+  };
+  double count = 0;
+  if (eq == std::string::npos || eq == 0 || c2 == std::string::npos ||
+      !number(text.substr(eq + 1, c1 - eq - 1), &axis->from) || !number(text.substr(c1 + 1, c2 - c1 - 1), &axis->to) ||
+      !number(text.substr(c2 + 1), &count) || count != std::floor(count) || count < 1 || count > 1e7) {
+    *error = "--grid '" + text + "': expected NAME=FROM:TO:COUNT, e.g. --grid crank=90:110:21";
+    return false;
+  }
+  axis->parameter = text.substr(0, eq);
+  axis->count = static_cast<int>(count);
+  return true;
+}
+
+std::vector<ParameterOverrides> GridVariants(const std::vector<GridAxis>& axes) {
+  std::vector<ParameterOverrides> out(1);
+  for (const GridAxis& a : axes) {
+    std::vector<ParameterOverrides> next;
+    next.reserve(out.size() * a.count);
+    for (const auto& base : out)
+      for (int k = 0; k < a.count; ++k) {
+        ParameterOverrides v = base;
+        v[a.parameter] = a.count == 1 ? a.from : a.from + (a.to - a.from) * k / (a.count - 1);
+        next.push_back(std::move(v));
+      }
+    out = std::move(next);
+  }
+  return out;
+}
+
+std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, unsigned long seed, std::string* error) {
+  std::vector<const Parameter*> ranged;
+  for (const auto& p : model.parameters)
+    if (p.min && p.max) ranged.push_back(&p);
+  if (ranged.empty()) {
+    *error = "no parameter declares a range: write e.g. \"crank\": {\"value\": 40, \"min\": 30, \"max\": 50}";
+    return {};
+  }
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<ParameterOverrides> out(count);
+  for (auto& v : out)
+    for (const Parameter* p : ranged) v[p->name] = *p->min + (*p->max - *p->min) * unit(rng);
+  return out;
+}
+
+namespace {
+
+TableOptions SweepTable(const Model& model, int order) {
+  TableOptions table;
+  table.order = order;
+  table.all_bodies = model.outputs.empty();  // no outputs: the bodies' columns
+  return table;
+}
+
+std::vector<int> SummaryColumns(const MotionLayout& layout) {
+  std::vector<int> cols;
+  for (int c = 0; c < layout.size(); ++c) {
+    const ColumnDescriptor& d = layout.columns()[c];
+    if (d.quantity != Quantity::Time && !d.IsDiagnostic()) cols.push_back(c);
+  }
+  return cols;
+}
+
+std::string StatusOf(StopKind stop) {
+  switch (stop) {
+    case StopKind::None: return "complete";
+    case StopKind::Refused: return "refused";
+    case StopKind::AssemblyFailed: return "assembly";
+    case StopKind::SingularPosition: return "singular";
+    case StopKind::SolveFailed: return "failed";
+    case StopKind::Interrupted: return "interrupted";
+  }
+  return "failed";
+}
+
+// Min/max of the summary columns and the worst condition over a run's rows.
+void Summarize(const Motion& m, VariantSummary* v) {
+  const std::vector<int> cols = SummaryColumns(m.layout());
+  const int condition = m.layout().Find("condition");
+  v->min.assign(cols.size(), std::numeric_limits<double>::quiet_NaN());
+  v->max = v->min;
+  for (int r = 0; r < m.rows(); ++r) {
+    for (size_t k = 0; k < cols.size(); ++k) {
+      const double x = m.at(r, cols[k]);
+      if (r == 0 || x < v->min[k]) v->min[k] = x;
+      if (r == 0 || x > v->max[k]) v->max[k] = x;
+    }
+    if (m.at(r, condition) > v->max_condition) v->max_condition = m.at(r, condition), v->t_max_condition = m.at(r, 0);
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> SweepColumns(const Model& model, int order) {
+  const MotionLayout layout(model, SweepTable(model, order));
+  std::vector<std::string> names;
+  for (int c : SummaryColumns(layout)) names.push_back(layout.columns()[c].Header());
+  return names;
+}
+
+VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, const SweepOptions& options) {
+  VariantSummary v;
+  for (const auto& kv : values) v.values.push_back(kv.second);
+  const size_t columns = SweepColumns(model, options.order).size();
+  LoadResult compiled = WithParameters(model, values);
+  if (!compiled.ok()) {
+    v.status = "invalid";
+    v.message = compiled.errors.empty() ? "the file does not compile" : compiled.errors.front().ToString();
+    v.min.assign(columns, std::numeric_limits<double>::quiet_NaN());
+    v.max = v.min;
+    return v;
+  }
+  AnalysisOptions analysis = options.analysis;
+  analysis.keep_step_diagnostics = false;
+  const Motion m = RunMotion(*compiled.model, analysis, SweepTable(*compiled.model, options.order));
+  v.status = m.report.limit ? "limit" : StatusOf(m.stop.kind);
+  v.message = m.complete ? "" : m.stop.Summary();
+  v.rows = m.rows();
+  if (!m.complete && m.rows() > 0) v.t_stop = m.at(m.rows() - 1, 0);
+  Summarize(m, &v);
+  if (v.min.size() != columns) v.min.assign(columns, std::numeric_limits<double>::quiet_NaN()), v.max = v.min;
+  return v;
+}
+
+SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& variants, const SweepOptions& options) {
+  SweepResult result;
+  result.total = static_cast<int>(variants.size());
+  result.shard = options.shard;
+  result.shards = options.shards;
+  if (!variants.empty())
+    for (const auto& kv : variants.front()) result.parameters.push_back(kv.first);
+  result.columns = SweepColumns(model, options.order);
+  std::vector<int> mine;
+  for (int i = 0; i < result.total; ++i)
+    if (i % options.shards == options.shard - 1) mine.push_back(i);
+  result.variants.resize(mine.size());
+  ParallelFor(static_cast<int>(mine.size()), options.threads, [&](int k, int) {
+    result.variants[k] = RunVariant(model, variants[mine[k]], options);
+    result.variants[k].index = mine[k];
+  });
+  return result;
+}
+
+}  // namespace mechkin

@@ -1,0 +1,70 @@
+// Design sweeps (issue "Parametric designs", item 6): many variants of one
+// parametric file, each run through the whole motion and summarised in one row
+// (parameters; assembled or not and why; where a limit or singular position
+// stopped it; min/max of every output column; the worst conditioning).
+//
+// Variants are numbered deterministically (a grid in row-major order, the last
+// axis fastest; or seeded samples drawn up front), so `--shard i/N` (variants
+// with index ≡ i−1 mod N) is the same partition on every machine and merged
+// shards equal the unsharded sweep exactly.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "analysis/kinematic_analysis.hpp"
+#include "model/loader.hpp"
+
+namespace mechkin {
+
+struct GridAxis {
+  std::string parameter;
+  double from = 0, to = 0;
+  int count = 1;
+};
+
+/// "crank=90:110:21" → {crank, 90, 110, 21}; false with `error` set when malformed.
+bool ParseGridAxis(const std::string& text, GridAxis* axis, std::string* error);
+/// The grid's variants, row-major (the last axis varies fastest).
+std::vector<ParameterOverrides> GridVariants(const std::vector<GridAxis>& axes);
+/// `count` variants uniform within each parameter's min/max (those declaring both), seeded.
+/// Empty with `error` set when no parameter declares a range.
+std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, unsigned long seed, std::string* error);
+
+struct SweepOptions {
+  int order = 1;          // derivative orders summarised
+  int threads = 0;        // 0: all cores
+  int shard = 1, shards = 1;  // run the variants with index ≡ shard−1 (mod shards)
+  AnalysisOptions analysis;
+};
+
+struct VariantSummary {
+  int index = 0;
+  std::vector<double> values;  // per SweepResult::parameters
+  // "complete", "invalid" (the file does not compile: geometry that does not
+  // close), "assembly", "refused", "limit", "singular", "failed"
+  std::string status;
+  std::string message;    // first line of why it is not complete
+  int rows = 0;
+  double t_stop = std::numeric_limits<double>::quiet_NaN();  // where a run stopped early
+  double max_condition = 0, t_max_condition = 0;
+  std::vector<double> min, max;  // per SweepResult::columns, over the rows run
+};
+
+struct SweepResult {
+  std::vector<std::string> parameters;  // varied ones, in the variants' order
+  std::vector<std::string> columns;     // summarised column headers ("piston.x [mm]")
+  int total = 0;                        // variants in the whole sweep
+  int shard = 1, shards = 1;
+  std::vector<VariantSummary> variants;  // by index
+};
+
+/// Runs the shard's variants on the threads.
+SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& variants, const SweepOptions& options);
+/// One variant's summary (what RunSweep does per variant; the Python binding's unit of work).
+VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, const SweepOptions& options);
+/// The column headers a sweep of `model` summarises.
+std::vector<std::string> SweepColumns(const Model& model, int order);
+
+}  // namespace mechkin

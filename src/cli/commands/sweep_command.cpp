@@ -1,0 +1,113 @@
+#include "cli/commands/sweep_command.hpp"
+
+#include "analysis/sweep.hpp"
+#include "cli/commands/load_for_command.hpp"
+#include "io/output_file.hpp"
+#include "io/sweep_writer.hpp"
+
+namespace mechkin {
+
+void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
+  CLI::App* cmd = app.add_subcommand("sweep", "Run many variants of a parametric file; one summary row per variant");
+  cmd->add_option("files", o->files, "Mechanism file (with --merge: the shard files)")->required();
+  cmd->add_option("-o,--output", o->output, "Summary file (default: stdout); written atomically");
+  cmd->add_option("--format", o->format, "csv, or json (the shard format --merge reads)")
+      ->check(CLI::IsMember({"csv", "json"}));
+  cmd->add_option("--grid", o->grid, "NAME=FROM:TO:COUNT, repeatable: the grid of all combinations");
+  cmd->add_option("--samples", o->samples, "N variants uniform within the parameters' min/max")
+      ->check(CLI::Range(1, 100000000));
+  cmd->add_option("--seed", o->seed, "Seed of --samples (default 1)");
+  cmd->add_option("--shard", o->shard, "i/N: run the variants with index = i-1 (mod N), for job arrays");
+  cmd->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::Range(0, 4096));
+  cmd->add_option("--order", o->order, "Derivative orders summarised (default 1)")->check(CLI::Range(0, 4));
+  cmd->add_option("--tol", o->tolerance, "Position tolerance of every run (default 1e-10)")->check(CLI::Range(1e-15, 1e-3));
+  cmd->add_option("--set", o->set, "Parameter value replacing the file's for every variant: NAME=NUMBER");
+  cmd->add_flag("--merge", o->merge, "Join shard files written with --format json");
+}
+
+namespace {
+
+bool ParseShard(const std::string& s, SweepOptions* options) {
+  if (s.empty()) return true;
+  const auto slash = s.find('/');
+  if (slash == std::string::npos) return false;
+  try {
+    options->shard = std::stoi(s.substr(0, slash));
+    options->shards = std::stoi(s.substr(slash + 1));
+  } catch (const std::exception&) {
+    return false;
+  }
+  return options->shards >= 1 && options->shard >= 1 && options->shard <= options->shards;
+}
+
+bool Write(const SweepCommandOptions& o, const SweepResult& result, std::ostream& out, std::ostream& err) {
+  const std::string text = o.format == "json" ? SweepJson(result).dump(1) + "\n" : SweepCsv(result);
+  OutputFile file;
+  std::string why;
+  if (!file.Open(o.output, o.merge ? o.files : std::vector<std::string>{o.files.front()}, &why, &out) ||
+      !file.Write(text) || !file.Commit("", &why)) {
+    err << "mechkin sweep: " << why << "\n";
+    return false;
+  }
+  return true;
+}
+
+// The variants: the grid's, or samples within the parameters' ranges.
+bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<ParameterOverrides>* variants,
+              std::ostream& err) {
+  if (o.grid.empty() == (o.samples == 0)) {
+    err << "mechkin sweep: give either --grid NAME=FROM:TO:COUNT (repeatable) or --samples N\n";
+    return false;
+  }
+  std::string why;
+  if (o.samples > 0) {
+    *variants = SampleVariants(model, o.samples, o.seed, &why);
+  } else {
+    std::vector<GridAxis> axes;
+    for (const auto& g : o.grid) {
+      GridAxis a;
+      if (!ParseGridAxis(g, &a, &why)) break;
+      if (!model.FindParameter(a.parameter)) why = "--grid: no parameter '" + a.parameter + "' in " + o.files.front();
+      if (!why.empty()) break;
+      axes.push_back(a);
+    }
+    if (why.empty()) *variants = GridVariants(axes);
+  }
+  if (!why.empty()) err << "mechkin sweep: " << why << "\n";
+  return why.empty();
+}
+
+}  // namespace
+
+int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostream& err) {
+  if (o.merge) {
+    SweepResult merged;
+    std::string why;
+    if (!MergeSweepFiles(o.files, &merged, &why)) {
+      err << "mechkin sweep --merge: " << why << "\n";
+      return 1;
+    }
+    return Write(o, merged, out, err) ? 0 : 1;
+  }
+  if (o.files.size() != 1) {
+    err << "mechkin sweep: give one mechanism file (several files only with --merge)\n";
+    return 2;
+  }
+  SweepOptions options;
+  if (!ParseShard(o.shard, &options)) {
+    err << "mechkin sweep: --shard '" << o.shard << "': expected i/N with 1 <= i <= N, e.g. --shard 2/8\n";
+    return 2;
+  }
+  ParameterOverrides overrides;
+  if (!ParseOverrides(o.set, &overrides, err)) return 2;
+  const std::optional<Model> model = LoadForCommand(o.files.front(), err, overrides);
+  if (!model) return 1;
+  std::vector<ParameterOverrides> variants;
+  if (!Variants(o, *model, &variants, err)) return 2;
+  options.order = o.order;
+  options.threads = o.threads;
+  options.analysis.tolerance = o.tolerance;
+  return Write(o, RunSweep(*model, variants, options), out, err) ? 0 : 1;
+}
+
+}  // namespace mechkin

@@ -1,0 +1,25 @@
+// `mechkin sweep FILE`: many variants of a parametric file, one summary row each;
+// `mechkin sweep --merge SHARDS...` joins shard files.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace mechkin {
+
+struct SweepCommandOptions {
+  std::vector<std::string> files;  // the mechanism file, or with --merge the shard files
+  std::string output, format = "csv", shard;
+  std::vector<std::string> grid, set;
+  int samples = 0, order = 1, threads = 0;
+  unsigned long seed = 1;
+  double tolerance = 1e-10;
+  bool merge = false;
+};
+
+void SetupSweepCommand(CLI::App& app, SweepCommandOptions* options);
+int RunSweepCommand(const SweepCommandOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace mechkin

@@ -1,0 +1,21 @@
+// Sweep summaries as CSV (one row per variant) and JSON (the shard format that
+// `mechkin sweep --merge` joins). Numbers are written to round-trip exactly, so
+// merged shards equal the unsharded sweep bit for bit.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "analysis/sweep.hpp"
+
+namespace mechkin {
+
+nlohmann::json SweepJson(const SweepResult& result);
+std::string SweepCsv(const SweepResult& result);
+/// Joins shard files written with --format json. On failure (unreadable file,
+/// shards of different sweeps, missing shards) returns false and says why,
+/// naming the missing shard numbers.
+bool MergeSweepFiles(const std::vector<std::string>& files, SweepResult* merged, std::string* error);
+
+}  // namespace mechkin
