@@ -96,6 +96,11 @@ const char* QuantityName(Quantity q) {
     case Quantity::Distance: return "distance";
     case Quantity::JointAngle: return "joint_angle";
     case Quantity::Angle: return "angle";
+    case Quantity::VelocityRatio: return "velocity_ratio";
+    case Quantity::OrientationAngle: return "orientation_angle";
+    case Quantity::OrientationParameter: return "orientation_parameter";
+    case Quantity::RotationVector: return "rotation_vector";
+    case Quantity::GimbalLock: return "gimbal_lock";
     case Quantity::JointSlide: return "joint_slide";
     case Quantity::DriverEffort: return "driver_effort";
     case Quantity::DriverPower: return "driver_power";

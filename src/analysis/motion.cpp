@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "analysis/orientation.hpp"
+#include "constraints/constraint.hpp"
+
 namespace mechkin {
 namespace {
 
@@ -107,6 +110,10 @@ void MotionLayout::AddOutput(const Model& model, int o) {
     AddSeries(Quantity::Distance, out.name, o, out.name, -1, L, 0);
   } else if (out.kind == OutputKind::Angle) {
     AddSeries(Quantity::Angle, out.name, o, out.name, -1, A, 0);
+  } else if (out.kind == OutputKind::VelocityRatio) {
+    AddVelocityRatio(model, o);
+  } else if (out.kind == OutputKind::Orientation) {
+    AddOrientation(out, o, A);
   } else {
     const JointType jt = model.joints[out.joint].type;
     if (jt == JointType::Revolute) {
@@ -117,6 +124,44 @@ void MotionLayout::AddOutput(const Model& model, int o) {
       AddSeries(Quantity::JointAngle, out.name, o, out.name + ".angle", -1, A, 0);
       AddSeries(Quantity::JointSlide, out.name, o, out.name + ".slide", -1, L, 0);
     }
+  }
+}
+
+// The ratio's own derivatives need one order more of the motion: orders 0..order−1
+// (at order 0 the column reads NaN). Unit: the output's unit per the input's.
+void MotionLayout::AddVelocityRatio(const Model& model, int o) {
+  const Output& out = model.outputs[o];
+  auto is_angle = [&](int output) {
+    const Output& x = model.outputs[output];
+    return x.kind == OutputKind::Angle ||
+           (x.kind == OutputKind::JointCoordinate && model.joints[x.joint].type == JointType::Revolute);
+  };
+  const std::string L = options_.si ? "m" : model.units.length_name;
+  const std::string A = options_.si ? "rad" : model.units.angle_name;
+  const std::string num = is_angle(out.ratio_of) ? A : L;
+  const bool input_angle = out.ratio_input_output >= 0
+                               ? is_angle(out.ratio_input_output)
+                               : model.drivers[out.ratio_input_driver].kind == DriverKind::JointRotation ||
+                                     model.drivers[out.ratio_input_driver].kind == DriverKind::BodyRotation;
+  const std::string den = input_angle ? A : L;
+  const std::string unit = num == den ? "" : num + "/" + den;
+  for (int k = 0; k <= std::max(options_.order - 1, 0); ++k)
+    columns_.push_back({out.name + kSuffix[k], UnitOfOrder(unit, k), out.name, Quantity::VelocityRatio, o, -1, k});
+}
+
+// Sequence angles name.angle1..3 (+ name.gimbal_lock), Euler parameters name.e0..e3,
+// or the rotation vector name.rx..rz, each with its derivatives.
+void MotionLayout::AddOrientation(const Output& out, int o, const std::string& A) {
+  if (out.sequence == "euler-parameters") {
+    for (int a = 0; a < 4; ++a)
+      AddSeries(Quantity::OrientationParameter, out.name, o, out.name + ".e" + std::to_string(a), a, "", 0);
+  } else if (out.sequence == "axis-angle") {
+    for (int a = 0; a < 3; ++a)
+      AddSeries(Quantity::RotationVector, out.name, o, out.name + ".r" + std::string(1, "xyz"[a]), a, A, 0);
+  } else {
+    for (int a = 0; a < 3; ++a)
+      AddSeries(Quantity::OrientationAngle, out.name, o, out.name + ".angle" + std::to_string(a + 1), a, A, 0);
+    columns_.push_back({out.name + ".gimbal_lock", "", out.name, Quantity::GimbalLock, o, -1, 0});
   }
 }
 
@@ -173,7 +218,11 @@ std::vector<int> MotionLayout::NeededBodies(const Model& model) const {
   std::vector<char> need(model.num_bodies(), 0);
   for (const Item& it : items_) {
     if (it.is_body) { need[it.index] = 1; continue; }
-    for (BodyIndex b : {model.outputs[it.index].body1, model.outputs[it.index].body2})
+    const Output& o = model.outputs[it.index];
+    std::vector<BodyIndex> uses = {o.body1, o.body2, o.frame};
+    for (int x : {o.ratio_of, o.ratio_input_output})
+      if (x >= 0) uses.insert(uses.end(), {model.outputs[x].body1, model.outputs[x].body2});
+    for (BodyIndex b : uses)
       if (b != kGround) need[b] = 1;
   }
   std::vector<int> bodies;
@@ -187,7 +236,9 @@ RowEvaluator::RowEvaluator(const Model& model, const MotionLayout& layout)
       layout_(layout),
       angle_ref_(model.outputs.size(), 0.0),
       angle_rate_(model.outputs.size(), 0.0),
-      angle_driver_(model.outputs.size(), -1) {
+      angle_driver_(model.outputs.size(), -1),
+      orientation_ref_(model.outputs.size(), std::array<double, 4>{0, 0, 0, 0}),
+      orientation_rate_(model.outputs.size(), std::array<double, 3>{0, 0, 0}) {
   for (size_t o = 0; o < model.outputs.size(); ++o)
     for (size_t d = 0; d < model.drivers.size(); ++d)
       if (model.outputs[o].kind == OutputKind::JointCoordinate && model.drivers[d].kind == DriverKind::JointRotation &&
@@ -290,11 +341,9 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
   const Output& op = model_.outputs[o];
   const BodyKinematics& b1 = s.Kin(op.body1);
   const BodyKinematics& b2 = s.Kin(op.body2);
-  if (op.kind == OutputKind::Point) {
-    for (int a = 0; a < 3; ++a)
-      for (int k = 0; k <= order; ++k) *out++ = b1.PointDerivative(op.point1, k)[a] * len;
-    return out;
-  }
+  if (op.kind == OutputKind::Point) return PointValues(s, o, out);
+  if (op.kind == OutputKind::VelocityRatio) return VelocityRatioValues(s, o, out);
+  if (op.kind == OutputKind::Orientation) return OrientationValues(s, o, out);
   if (op.kind == OutputKind::Distance) {
     Vec3 d[5];
     for (int k = 0; k <= order; ++k) d[k] = b2.PointDerivative(op.point2, k) - b1.PointDerivative(op.point1, k);
@@ -366,6 +415,137 @@ double* RowEvaluator::AngleValues(const SystemState& s, int o, double* out) {
   } catch (const JetDomainError&) {
     for (int k = 1; k <= order; ++k) *out++ = std::nan("");
   }
+  return out;
+}
+
+// Global, or in another body's frame: x_a = (A_f e_a)·(P − r_f) on jets.
+double* RowEvaluator::PointValues(const SystemState& s, int o, double* out) const {
+  const int order = layout_.options().order;
+  const double len = layout_.length_factor();
+  const Output& op = model_.outputs[o];
+  const BodyKinematics& b = s.Kin(op.body1);
+  if (op.frame == kGround) {
+    for (int a = 0; a < 3; ++a)
+      for (int k = 0; k <= order; ++k) *out++ = b.PointDerivative(op.point1, k)[a] * len;
+    return out;
+  }
+  const BodyKinematics& f = s.Kin(op.frame);
+  Vec3 d[5], e[3][5];
+  for (int k = 0; k <= order; ++k) {
+    d[k] = b.PointDerivative(op.point1, k) - f.PointDerivative(Vec3::Zero(), k);
+    for (int a = 0; a < 3; ++a) e[a][k] = f.VectorDerivative(Vec3::Unit(a), k);
+  }
+  const auto dj = VecJet(d, order);
+  for (int a = 0; a < 3; ++a) {
+    const auto ej = VecJet(e[a], order);
+    const Jet x = ej[0] * dj[0] + ej[1] * dj[1] + ej[2] * dj[2];
+    for (int k = 0; k <= order; ++k) *out++ = x.Derivative(k) * len;
+  }
+  return out;
+}
+
+// Derivatives (orders ≥ 1, SI) of a one-coordinate output; c[0] is not used.
+Jet RowEvaluator::ScalarOutputJet(const SystemState& s, int o) const {
+  const int order = layout_.options().order;
+  const Output& op = model_.outputs[o];
+  const BodyKinematics& b1 = s.Kin(op.body1);
+  const BodyKinematics& b2 = s.Kin(op.body2);
+  static constexpr double kInvFact[] = {1, 1, 0.5, 1.0 / 6, 1.0 / 24};
+  Jet j;
+  if (op.kind == OutputKind::JointCoordinate && model_.joints[op.joint].type == JointType::Revolute) {
+    const Joint& jt = model_.joints[op.joint];
+    for (int k = 1; k <= order; ++k) j.c[k] = (jt.frame2.h.dot(b2.w[k - 1]) - jt.frame1.h.dot(b1.w[k - 1])) * kInvFact[k];
+    return j;
+  }
+  // Prismatic slide, distance and angle: the value columns' own jets, recomputed.
+  std::vector<double> tmp(3 * (order + 1) + 1);
+  RowEvaluator* self = const_cast<RowEvaluator*>(this);
+  const double keep_ref = angle_ref_[o], keep_rate = angle_rate_[o];
+  const double factor = op.kind == OutputKind::Angle ? layout_.angle_factor() : layout_.length_factor();
+  if (op.kind == OutputKind::Angle) self->AngleValues(s, o, tmp.data());
+  else self->OutputValues(s, o, tmp.data());
+  self->angle_ref_[o] = keep_ref, self->angle_rate_[o] = keep_rate;
+  for (int k = 0; k <= order; ++k) j.c[k] = tmp[k] / factor * kInvFact[k];
+  return j;
+}
+
+// d(output)/d(input) = ȯ / i̇ and its derivatives: the quotient of the two
+// derivative series (jets shifted by one order), in the table's units.
+double* RowEvaluator::VelocityRatioValues(const SystemState& s, int o, double* out) const {
+  const int order = layout_.options().order;
+  const Output& op = model_.outputs[o];
+  auto factor = [&](bool angle) { return angle ? layout_.angle_factor() : layout_.length_factor(); };
+  auto is_angle = [&](int x) {
+    const Output& q = model_.outputs[x];
+    return q.kind == OutputKind::Angle ||
+           (q.kind == OutputKind::JointCoordinate && model_.joints[q.joint].type == JointType::Revolute);
+  };
+  const Jet num = ScalarOutputJet(s, op.ratio_of);
+  Jet den;
+  double den_factor;
+  if (op.ratio_input_output >= 0) {
+    den = ScalarOutputJet(s, op.ratio_input_output);
+    den_factor = factor(is_angle(op.ratio_input_output));
+  } else {
+    const Driver& d = model_.drivers[op.ratio_input_driver];
+    den = s.driver_values[op.ratio_input_driver];
+    den_factor = factor(d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation);
+  }
+  Jet p, q;  // the derivative series, to order − 1
+  for (int k = 0; k < order; ++k) p.c[k] = (k + 1) * num.c[k + 1], q.c[k] = (k + 1) * den.c[k + 1];
+  const int columns = std::max(order - 1, 0) + 1;
+  if (order == 0 || q.c[0] == 0) {
+    for (int k = 0; k < columns; ++k) *out++ = std::nan("");
+    return out;
+  }
+  const Jet r = p / q;
+  const double scale = factor(is_angle(op.ratio_of)) / den_factor;
+  for (int k = 0; k < columns; ++k) *out++ = r.Derivative(k) * scale;
+  return out;
+}
+
+// Orientation of body2 relative to body1 (analysis/orientation.hpp). Sequence angles
+// are continued over turns from the previous row (its values advanced by their
+// rates); at gimbal lock the first and third angles and their derivatives read NaN
+// and the row's gimbal_lock column reads 1. Euler parameters keep the sign nearest
+// the previous row's.
+double* RowEvaluator::OrientationValues(const SystemState& s, int o, double* out) {
+  const int order = layout_.options().order;
+  const double ang = layout_.angle_factor();
+  const Output& op = model_.outputs[o];
+  const BodyKinematics& b1 = s.Kin(op.body1);
+  const BodyKinematics& b2 = s.Kin(op.body2);
+  auto& ref = orientation_ref_[o];
+  if (op.sequence == "euler-parameters" || op.sequence == "axis-angle") {
+    std::array<Jet, 4> q = RelativeEulerParameters(b1, b2, order);
+    const double dot = ref[0] * q[0].c[0] + ref[1] * q[1].c[0] + ref[2] * q[2].c[0] + ref[3] * q[3].c[0];
+    const bool flip = first_row_ ? q[0].c[0] < 0 : dot < 0;
+    for (auto& c : q)
+      if (flip) c = -c;
+    for (int a = 0; a < 4; ++a) ref[a] = q[a].c[0];
+    if (op.sequence == "euler-parameters") {
+      for (int a = 0; a < 4; ++a)
+        for (int k = 0; k <= order; ++k) *out++ = q[a].Derivative(k);
+      return out;
+    }
+    const std::array<Jet, 3> v = RotationVector(q);
+    for (int a = 0; a < 3; ++a)
+      for (int k = 0; k <= order; ++k) *out++ = v[a].Derivative(k) * ang;
+    return out;
+  }
+  std::array<Jet, 3> a;
+  const bool defined = SequenceAngles(RelativeRotation(b1, b2, order), op.sequence, &a);
+  for (int c = 0; c < 3; ++c) {
+    const bool value_defined = defined || c == 1;
+    double value = a[c].c[0];
+    if (value_defined && c != 1 && !first_row_)
+      value = UnwrapAngle(std::sin(value), std::cos(value), ref[c] + orientation_rate_[o][c] * (s.t - last_t_));
+    *out++ = value_defined ? value * ang : std::nan("");
+    for (int k = 1; k <= order; ++k) *out++ = defined ? a[c].Derivative(k) * ang : std::nan("");
+    if (value_defined) ref[c] = value;
+    orientation_rate_[o][c] = defined && order >= 1 ? a[c].Derivative(1) : 0;
+  }
+  *out++ = defined ? 0 : 1;
   return out;
 }
 

@@ -9,6 +9,7 @@
 // front ends can view without copying; the CLI streams rows to a file instead.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,6 +29,11 @@ enum class Quantity {
   JointAngle,         // revolute angle / cylindrical & screw ".angle"
   JointSlide,         // prismatic slide / cylindrical & screw ".slide"
   Angle,              // angle output: between two body-fixed vectors
+  VelocityRatio,      // d(output)/d(input); its order k column is the k-th time derivative of the ratio
+  OrientationAngle,   // orientation output: the sequence's angles, component 0..2
+  OrientationParameter,  // orientation output: relative Euler parameters e0..e3
+  RotationVector,     // orientation output "axis-angle": θn, component x/y/z
+  GimbalLock,         // orientation output: 1 where the sequence's first and third angles are undefined
   DriverEffort,       // torque or force a driver applies (".effort"), order 0..1
   DriverPower,        // ".power"
   JointForce,         // reaction force on body2 by body1, global x/y/z (".fx")
@@ -95,6 +101,8 @@ class MotionLayout {
   void AddOutput(const Model& model, int o);
   void AddForces(const Model& model);
   void AddSensitivities();
+  void AddVelocityRatio(const Model& model, int o);
+  void AddOrientation(const Output& out, int o, const std::string& angle_unit);
   void AddRated(Quantity q, const std::string& subject, int index, const std::string& name, int component,
                 const std::string& unit);
   void AddSeries(Quantity q, const std::string& subject, int index, const std::string& name, int component,
@@ -131,12 +139,19 @@ class RowEvaluator {
 
   double JointAngle(const SystemState& s, int o, double raw_sin, double raw_cos);
   double* AngleValues(const SystemState& s, int o, double* out);
+  double* PointValues(const SystemState& s, int o, double* out) const;
+  double* VelocityRatioValues(const SystemState& s, int o, double* out) const;
+  double* OrientationValues(const SystemState& s, int o, double* out);
+  Jet ScalarOutputJet(const SystemState& s, int o) const;
 
   const Model& model_;
   const MotionLayout& layout_;
   std::vector<double> angle_ref_;    // per output: the last joint angle (SI), for continuity
   std::vector<double> angle_rate_;   // per output: its last angular velocity (SI)
   std::vector<int> angle_driver_;    // per output: the rotation driver of its joint, or −1
+  // Orientation outputs: the last row's angles / Euler parameters, for continuity.
+  std::vector<std::array<double, 4>> orientation_ref_;
+  std::vector<std::array<double, 3>> orientation_rate_;
   double last_t_ = 0;
   bool first_row_ = true;
 };

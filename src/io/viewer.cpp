@@ -38,7 +38,7 @@ ScenePoints CollectPoints(const Model& m) {
     AddPoint(&sp, j.body2, j.frame2.origin, tol);
   }
   for (const Output& o : m.outputs) {
-    if (o.kind == OutputKind::JointCoordinate) continue;
+    if (o.kind != OutputKind::Point && o.kind != OutputKind::Distance) continue;
     AddPoint(&sp, o.body1, o.point1, tol);
     if (o.kind == OutputKind::Distance) AddPoint(&sp, o.body2, o.point2, tol);
   }

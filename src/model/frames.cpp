@@ -49,7 +49,7 @@ double CharacteristicLength(const Model& model) {
       pts.push_back(global(d.body2, d.point2));
     }
   for (const auto& o : model.outputs)
-    if (o.kind != OutputKind::JointCoordinate) pts.push_back(global(o.body1, o.point1));
+    if (o.kind == OutputKind::Point || o.kind == OutputKind::Distance) pts.push_back(global(o.body1, o.point1));
   if (pts.empty()) return model.units.length_to_si;
   Vec3 c = Vec3::Zero();
   for (const auto& p : pts) c += p;

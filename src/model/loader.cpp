@@ -773,7 +773,7 @@ class SpecReader {
     auto type_s = rd_.String(d, "type", ptr);
     std::vector<std::string> allowed = {"name", "description", "type", "function"};
     std::vector<std::string> required = {"name", "type", "function"};
-    const bool by_body = d.contains("body") || d.contains("axis");
+    const bool by_body = (d.contains("body") || d.contains("axis")) && !(type_s && *type_s == "coordinate");
     if (type_s && *type_s == "rotation" && by_body) {
       allowed.insert(allowed.end(), {"body", "axis"});
       required.insert(required.end(), {"body", "axis"});
@@ -783,13 +783,16 @@ class SpecReader {
     } else if (type_s && *type_s == "distance") {
       allowed.insert(allowed.end(), {"body1", "point1", "body2", "point2"});
       required.insert(required.end(), {"body1", "point1", "body2", "point2"});
+    } else if (type_s && *type_s == "coordinate") {
+      allowed.insert(allowed.end(), {"body", "point", "axis", "axis_body"});
+      required.insert(required.end(), {"body", "point", "axis"});
     } else {
       if (type_s) {
-        const std::string g = DidYouMean(*type_s, {"rotation", "translation", "distance"});
+        const std::string g = DidYouMean(*type_s, {"rotation", "translation", "distance", "coordinate"});
         rd_.Error(ptr + "/type", "unknown driver type '" + Shorten(*type_s) + "'",
-                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: rotation, translation, distance");
+                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: rotation, translation, distance, coordinate");
       }
-      allowed.insert(allowed.end(), {"joint", "body", "axis", "body1", "point1", "body2", "point2"});
+      allowed.insert(allowed.end(), {"joint", "body", "axis", "body1", "point1", "body2", "point2", "point", "axis_body"});
     }
     rd_.CheckObject(d, ptr, allowed, required, type_s ? "a " + *type_s + " driver" : "a driver");
     auto name = rd_.Name(d, ptr, "driver");
@@ -811,6 +814,8 @@ class SpecReader {
       scale = *type_s == "rotation" ? angle_ : length_;
     } else if (type_s && *type_s == "distance") {
       ok = DriverBetweenPoints(d, ptr, &drv) && ok;
+    } else if (type_s && *type_s == "coordinate") {
+      ok = DriverOnCoordinate(d, ptr, &drv) && ok;
     } else {
       ok = false;
     }
@@ -855,8 +860,16 @@ class SpecReader {
     std::vector<std::string> required = {"name", "type"};
     if (type_s && *type_s == "point") {
       out.kind = OutputKind::Point;
-      allowed.insert(allowed.end(), {"body", "point"});
+      allowed.insert(allowed.end(), {"body", "point", "frame"});
       required.insert(required.end(), {"body", "point"});
+    } else if (type_s && *type_s == "velocity_ratio") {
+      out.kind = OutputKind::VelocityRatio;
+      allowed.insert(allowed.end(), {"output", "input"});
+      required.insert(required.end(), {"output", "input"});
+    } else if (type_s && *type_s == "orientation") {
+      out.kind = OutputKind::Orientation;
+      allowed.insert(allowed.end(), {"body", "relative_to", "sequence"});
+      required.insert(required.end(), {"body", "sequence"});
     } else if (type_s && *type_s == "joint") {
       out.kind = OutputKind::JointCoordinate;
       allowed.push_back("joint");
@@ -871,12 +884,13 @@ class SpecReader {
       required.insert(required.end(), {"body1", "vector1", "body2", "vector2"});
     } else {
       if (type_s) {
-        const std::string g = DidYouMean(*type_s, {"point", "joint", "distance", "angle"});
+        const std::vector<std::string> types = {"point", "joint", "distance", "angle", "velocity_ratio", "orientation"};
+        const std::string g = DidYouMean(*type_s, types);
         rd_.Error(ptr + "/type", "unknown output type '" + Shorten(*type_s) + "'",
-                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: point, joint, distance, angle");
+                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(types));
       }
       allowed.insert(allowed.end(), {"body", "point", "joint", "body1", "point1", "body2", "point2", "vector1",
-                                     "vector2", "about"});
+                                     "vector2", "about", "frame", "output", "input", "relative_to", "sequence"});
     }
     rd_.CheckObject(o, ptr, allowed, required, "an output");
     auto name = rd_.Name(o, ptr, "output");
@@ -904,6 +918,15 @@ class SpecReader {
       if (!b || !p) return;
       out.body1 = *b;
       out.point1 = LocalPoint(*b, *p);
+      if (o.contains("frame")) {
+        auto f = BodyRef(o, "frame", ptr);
+        if (!f) return;
+        out.frame = *f;
+      }
+    } else if (out.kind == OutputKind::VelocityRatio) {
+      if (!ReadVelocityRatio(o, ptr, &out)) return;
+    } else if (out.kind == OutputKind::Orientation) {
+      if (!ReadOrientationOutput(o, ptr, &out)) return;
     } else if (out.kind == OutputKind::JointCoordinate) {
       auto jn = rd_.String(o, "joint", ptr);
       if (!jn) return;
@@ -942,6 +965,65 @@ class SpecReader {
     }
     out.name = *name;
     model_.outputs.push_back(out);
+  }
+
+  // {"type": "velocity_ratio", "output", "input"}: d(output)/d(input); `output` an
+  // earlier one-coordinate output (revolute or prismatic joint, distance, angle),
+  // `input` such an output or a driver.
+  bool ReadVelocityRatio(const json& o, const std::string& ptr, Output* out) {
+    auto of = rd_.String(o, "output", ptr);
+    auto in = rd_.String(o, "input", ptr);
+    if (!of || !in) return false;
+    std::vector<std::string> scalar;
+    int of_index = -1, in_output = -1, in_driver = -1;
+    for (size_t k = 0; k < model_.outputs.size(); ++k) {
+      if (!IsScalarOutput(model_.outputs[k])) continue;
+      scalar.push_back(model_.outputs[k].name);
+      if (model_.outputs[k].name == *of) of_index = static_cast<int>(k);
+      if (model_.outputs[k].name == *in) in_output = static_cast<int>(k);
+    }
+    for (size_t k = 0; k < model_.drivers.size(); ++k)
+      if (model_.drivers[k].name == *in) in_driver = static_cast<int>(k);
+    const std::string fix = "name an earlier output with one coordinate (revolute or prismatic joint, distance, "
+                            "angle)" + (scalar.empty() ? std::string() : ": " + Join(scalar));
+    if (of_index < 0) rd_.Error(ptr + "/output", "'" + Shorten(*of) + "' is not such an output", fix);
+    if (in_output < 0 && in_driver < 0)
+      rd_.Error(ptr + "/input", "'" + Shorten(*in) + "' is neither such an output nor a driver", fix + ", or a driver");
+    if (of_index < 0 || (in_output < 0 && in_driver < 0)) return false;
+    out->ratio_of = of_index;
+    out->ratio_input_output = in_output;
+    out->ratio_input_driver = in_output < 0 ? in_driver : -1;
+    return true;
+  }
+
+  bool IsScalarOutput(const Output& o) const {
+    if (o.kind == OutputKind::Distance || o.kind == OutputKind::Angle) return true;
+    if (o.kind != OutputKind::JointCoordinate) return false;
+    const JointType t = model_.joints[o.joint].type;
+    return t == JointType::Revolute || t == JointType::Prismatic;
+  }
+
+  // {"type": "orientation", "body", "relative_to"?, "sequence"}.
+  bool ReadOrientationOutput(const json& o, const std::string& ptr, Output* out) {
+    auto b = BodyRef(o, "body", ptr);
+    std::optional<BodyIndex> rel = kGround;
+    if (o.contains("relative_to")) rel = BodyRef(o, "relative_to", ptr);
+    auto seq = rd_.String(o, "sequence", ptr);
+    if (!b || !rel || !seq) return false;
+    static const std::vector<std::string> kSequences = {
+        "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
+        "axis-angle", "euler-parameters"};
+    if (std::find(kSequences.begin(), kSequences.end(), *seq) == kSequences.end()) {
+      const std::string g = DidYouMean(*seq, kSequences);
+      rd_.Error(ptr + "/sequence", "unknown sequence '" + Shorten(*seq) + "'",
+                (g.empty() ? "" : "did you mean '" + g + "'? ") + "sequences: " + Join(kSequences) +
+                    " (rotation sequences are intrinsic: ZYX = yaw about z, then pitch about the new y, then roll)");
+      return false;
+    }
+    out->body1 = *rel;
+    out->body2 = *b;
+    out->sequence = *seq;
+    return true;
   }
 
   // {"type": "angle", "body1", "vector1", "body2", "vector2", "about"?}: directions in
@@ -1531,6 +1613,33 @@ class SpecReader {
     } else
       ok = false;
     return ok;
+  }
+
+  // {"type": "coordinate", "body", "point", "axis", "axis_body"?}: the body point's
+  // coordinate along an axis fixed in ground (or in axis_body), 0 at the design pose
+  // (the seed's dot-2 distance driver: Φ = a_iᵀ(P_j − P_i) − f(t), P_i the design
+  // position of the point, fixed in the axis body).
+  bool DriverOnCoordinate(const json& d, const std::string& ptr, Driver* drv) {
+    drv->kind = DriverKind::JointTranslation;
+    auto b = BodyRef(d, "body", ptr);
+    auto p = LengthVector(d, "point", ptr);
+    auto axis = rd_.Vector(d, "axis", ptr, true);
+    std::optional<BodyIndex> ab = kGround;
+    if (d.contains("axis_body")) ab = BodyRef(d, "axis_body", ptr);
+    if (!b || !p || !axis || !ab) return false;
+    if (*b == *ab) {
+      rd_.Error(ptr + "/axis_body", "the axis is fixed in the driven body itself: its coordinate cannot change",
+                "fix the axis in ground (omit axis_body) or in another body");
+      return false;
+    }
+    const JointFrame global = MakeFrame(*p, *axis);
+    drv->body1 = *ab;
+    drv->body2 = *b;
+    auto [r1, A1] = Pose(*ab);
+    auto [r2, A2] = Pose(*b);
+    drv->frame1 = ToLocal(global, r1, A1);
+    drv->frame2 = ToLocal(global, r2, A2);
+    return true;
   }
 
   bool DriverBetweenPoints(const json& d, const std::string& ptr, Driver* drv_ptr) {

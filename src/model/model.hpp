@@ -90,7 +90,7 @@ struct Driver {
   TimeFunction function;             // SI value: rad or m
 };
 
-enum class OutputKind { Point, JointCoordinate, Distance, Angle };
+enum class OutputKind { Point, JointCoordinate, Distance, Angle, VelocityRatio, Orientation };
 
 struct Output {
   std::string name;
@@ -102,6 +102,13 @@ struct Output {
   // angle from vector1 to vector2 about `about` (unit, fixed in body1, local).
   Vec3 vector1 = Vec3::UnitX(), vector2 = Vec3::UnitX(), about = Vec3::UnitZ();
   bool signed_about = false;
+  // Point: the body whose frame the coordinates are in (ground: global).
+  BodyIndex frame = kGround;
+  // VelocityRatio: d(outputs[ratio_of])/d(input), the input an output or a driver.
+  int ratio_of = -1, ratio_input_output = -1, ratio_input_driver = -1;
+  // Orientation: body2 relative to body1; "XYZ" … "ZYX", "ZXZ" … (intrinsic
+  // rotation sequences), "axis-angle" or "euler-parameters".
+  std::string sequence;
 };
 
 struct Analysis {
