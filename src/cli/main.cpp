@@ -7,6 +7,7 @@
 
 #include "cli/commands/bench_command.hpp"
 #include "cli/commands/check_command.hpp"
+#include "cli/commands/range_command.hpp"
 #include "cli/commands/run_command.hpp"
 #include "cli/commands/sweep_command.hpp"
 #include "cli/commands/tolerance_command.hpp"
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
     mechkin::SetupToleranceCommand(app, &tolerance);
     mechkin::SweepCommandOptions sweep;
     mechkin::SetupSweepCommand(app, &sweep);
+    mechkin::RangeCommandOptions range;
+    mechkin::SetupRangeCommand(app, &range);
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -40,6 +43,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) code = mechkin::RunRun(run, std::cout, std::cerr);
     if (app.got_subcommand("bench")) code = mechkin::RunBenchCommand(bench, std::cout, std::cerr);
     if (app.got_subcommand("view")) code = mechkin::RunView(view, std::cout, std::cerr);
+    if (app.got_subcommand("range")) code = mechkin::RunRangeCommand(range, std::cout, std::cerr);
     if (app.got_subcommand("sweep")) code = mechkin::RunSweepCommand(sweep, std::cout, std::cerr);
     if (app.got_subcommand("tolerance")) code = mechkin::RunToleranceCommand(tolerance, std::cout, std::cerr);
     // A report that could not be written is a failure, not a success.

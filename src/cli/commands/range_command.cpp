@@ -1,0 +1,54 @@
+#include "cli/commands/range_command.hpp"
+
+#include <sstream>
+
+#include "analysis/range.hpp"
+#include "cli/commands/load_for_command.hpp"
+#include "io/output_file.hpp"
+#include "io/range_report_writer.hpp"
+
+namespace mechkin {
+
+void SetupRangeCommand(CLI::App& app, RangeCommandOptions* o) {
+  CLI::App* cmd = app.add_subcommand(
+      "range", "Range of motion of each driver from the design pose: limits located, classified, or a full turn");
+  cmd->add_option("file", o->file, "Mechanism file")->required();
+  cmd->add_option("--driver", o->driver, "Only this driver (default: each in turn, the others held at the design)");
+  cmd->add_option("-o,--output", o->output, "Report file (default: stdout); written atomically");
+  cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option("--steps", o->steps, "Steps per direction (a turn, or the search span; default 360)")
+      ->check(CLI::Range(4, 10000000));
+  cmd->add_option("--span", o->span, "Search span of translations and distances, file units (default 4x the size)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--tol", o->tolerance, "Position tolerance (default 1e-10)")->check(CLI::Range(1e-15, 1e-3));
+  cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
+}
+
+int RunRangeCommand(const RangeCommandOptions& o, std::ostream& out, std::ostream& err) {
+  ParameterOverrides overrides;
+  if (!ParseOverrides(o.set, &overrides, err)) return 2;
+  const std::optional<Model> model = LoadForCommand(o.file, err, overrides);
+  if (!model) return 1;
+  RangeOptions options;
+  options.driver = o.driver;
+  options.steps = o.steps;
+  options.span = o.span;
+  options.tolerance = o.tolerance;
+  const RangeReport report = CalcRange(*model, options);
+  if (!report.ok) {
+    err << "mechkin range: " << o.file << ": " << report.message << "\n";
+    return 1;
+  }
+  std::ostringstream text;
+  if (o.format == "json") text << RangeReportJson(report).dump(2) << "\n";
+  else PrintRangeReport(report, text);
+  OutputFile file;
+  std::string why;
+  if (!file.Open(o.output, {o.file}, &why, &out) || !file.Write(text.str()) || !file.Commit("", &why)) {
+    err << "mechkin range: " << why << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace mechkin
