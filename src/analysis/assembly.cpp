@@ -60,6 +60,42 @@ bool AssembleDesignPose(const ConstraintSystem& sys, const SolveOptions& solve, 
   return false;
 }
 
+bool AssembleHintedBranch(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
+                          std::string* message) {
+  const Model& model = sys.model();
+  if (!model.analysis || model.analysis->branch_joints.empty()) return true;
+  Model hinted = model;
+  hinted.drivers.clear();
+  for (const auto& [joint, value] : model.analysis->branch_joints) {
+    const Joint& j = model.joints[joint];
+    Driver d;
+    d.name = "branch hint " + j.name;
+    d.kind = j.type == JointType::Revolute ? DriverKind::JointRotation : DriverKind::JointTranslation;
+    d.joint = joint;
+    d.body1 = j.body1, d.body2 = j.body2, d.frame1 = j.frame1, d.frame2 = j.frame2;
+    hinted.drivers.push_back(d);
+  }
+  const ConstraintSystem hsys(hinted, true);
+  SystemState hs(hsys);
+  hs.bodies = s->bodies;
+  for (size_t k = 0; k < hinted.drivers.size(); ++k)
+    hs.driver_values[k] = Jet::Constant(model.analysis->branch_joints[k].second);
+  AimRotationDrivers(hsys, &hs);
+  SolveOptions rough = solve;
+  rough.max_iterations = 100;
+  const SolveSummary a = AssembleMinNorm(hsys, AllRows(hsys), rough, &hs);
+  *iterations += a.iterations;
+  if (!a.success) {
+    *message = "the branch hint cannot be assembled (the joints cannot take the hinted coordinates): " + a.message;
+    return false;
+  }
+  for (size_t b = 0; b < s->bodies.size(); ++b) s->bodies[b].SetPose(hs.bodies[b].r[0], hs.bodies[b].p);
+  const SolveSummary r = AssembleMinNorm(sys, AllRows(sys), rough, s);
+  *iterations += r.iterations;
+  if (!r.success) *message = "the mechanism cannot be assembled on the hinted branch at the drivers' design values";
+  return r.success;
+}
+
 namespace {
 
 constexpr int kMaxContinuationSteps = 1000;

@@ -833,10 +833,40 @@ class SpecReader {
     driver_pointers_.push_back(ptr);
   }
 
+  // "branch": {"joints": {"D": -40}}: revolute angles / prismatic slides from the design pose.
+  void ReadBranch(const json& b, Analysis* an) {
+    const std::string ptr = "/analysis/branch";
+    if (!rd_.CheckObject(b, ptr, {"joints"}, {"joints"}, "'branch'")) return;
+    const json& joints = b.at("joints");
+    if (!joints.is_object()) {
+      rd_.Error(ptr + "/joints", "'joints' must be an object {\"joint name\": coordinate}, not " + TypeName(joints));
+      return;
+    }
+    for (const auto& item : joints.items()) {
+      const std::string p = ptr + "/joints/" + EscapeToken(item.key());
+      const auto it = joint_index_.find(item.key());
+      if (it == joint_index_.end() || it->second < 0) {
+        std::vector<std::string> names;
+        for (const auto& kv : joint_index_) names.push_back(kv.first);
+        const std::string g = DidYouMean(item.key(), names);
+        rd_.Error(p, "unknown joint '" + Shorten(item.key()) + "'", g.empty() ? "valid joints: " + Join(names) : "did you mean '" + g + "'?");
+        continue;
+      }
+      const JointType t = model_.joints[it->second].type;
+      if (t != JointType::Revolute && t != JointType::Prismatic) {
+        rd_.Error(p, "branch hints are revolute angles or prismatic slides; '" + item.key() + "' is " + JointTypeName(t),
+                  "hint a revolute or prismatic joint of the branch");
+        continue;
+      }
+      if (auto v = rd_.ScalarValue(item.value(), p, "the hint"))
+        an->branch_joints.emplace_back(it->second, *v * (t == JointType::Revolute ? angle_ : length_));
+    }
+  }
+
   void ReadAnalysis(const json& doc) {
     if (doc.contains("analysis")) {
       const json& a = doc.at("analysis");
-      if (rd_.CheckObject(a, "/analysis", {"start", "end", "steps"}, {"start", "end", "steps"}, "'analysis'")) {
+      if (rd_.CheckObject(a, "/analysis", {"start", "end", "steps", "branch"}, {"start", "end", "steps"}, "'analysis'")) {
         auto s = rd_.Number(a, "start", "/analysis");
         auto e = rd_.Number(a, "end", "/analysis");
         auto n = rd_.Integer(a, "steps", "/analysis");
@@ -844,7 +874,8 @@ class SpecReader {
         if (n && *n < 1)
           rd_.Error("/analysis/steps", "'steps' must be at least 1", "give the number of intervals (rows = steps + 1)");
         if (n && *n > 10000000) rd_.Error("/analysis/steps", "'steps' is larger than 10,000,000", "use fewer steps");
-        if (s && e && n && *e > *s && *n >= 1 && *n <= 10000000) model_.analysis = Analysis{*s, *e, *n};
+        if (s && e && n && *e > *s && *n >= 1 && *n <= 10000000) model_.analysis = Analysis{*s, *e, *n, {}};
+        if (a.contains("branch") && model_.analysis) ReadBranch(a.at("branch"), &*model_.analysis);
       }
     }
   }

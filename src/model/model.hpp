@@ -114,6 +114,9 @@ struct Output {
 struct Analysis {
   double start = 0, end = 1;
   int steps = 100;
+  // "branch": {"joints": {J: value}}: approximate joint coordinates (SI, from the
+  // design pose) of the assembly branch wanted, at the drivers' design values.
+  std::vector<std::pair<int, double>> branch_joints;
 };
 
 /// A named number of the file ("parameters"), in the units of the places that use it.
