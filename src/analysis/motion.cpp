@@ -116,7 +116,16 @@ void MotionLayout::AddOutput(const Model& model, int o) {
     AddOrientation(out, o, A);
   } else {
     const JointType jt = model.joints[out.joint].type;
-    if (jt == JointType::Revolute) {
+    if (jt == JointType::Spherical) {
+      AddOrientation(out, o, A);
+    } else if (jt == JointType::Universal) {
+      for (int a = 0; a < 2; ++a)
+        AddSeries(Quantity::JointAngle, out.name, o, out.name + ".angle" + std::to_string(a + 1), a, A, 0);
+    } else if (jt == JointType::Planar) {
+      AddSeries(Quantity::JointSlide, out.name, o, out.name + ".slide1", 0, L, 0);
+      AddSeries(Quantity::JointSlide, out.name, o, out.name + ".slide2", 1, L, 0);
+      AddSeries(Quantity::JointAngle, out.name, o, out.name + ".angle", -1, A, 0);
+    } else if (jt == JointType::Revolute) {
       AddSeries(Quantity::JointAngle, out.name, o, out.name, -1, A, 0);
     } else if (jt == JointType::Prismatic) {
       AddSeries(Quantity::JointSlide, out.name, o, out.name, -1, L, 0);
@@ -354,6 +363,12 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
   }
   if (op.kind == OutputKind::Angle) return AngleValues(s, o, out);
   const Joint& jt = model_.joints[op.joint];
+  if (jt.type == JointType::Spherical) return OrientationValues(s, o, out);
+  if (jt.type == JointType::Universal) return UniversalValues(s, o, out);
+  if (jt.type == JointType::Planar) {
+    out = PlanarSlides(s, o, out);
+    // and the angle about the normal, below, as for a revolute joint
+  }
   if (jt.type != JointType::Prismatic) {
     // θ = atan2(g_iᵀf_j, f_iᵀf_j), continuous from the design pose;
     // θ^(k) = h'_jᵀω_j'^(k−1) − h'_iᵀω_i'^(k−1) on the joint.
@@ -363,7 +378,7 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
     for (int k = 1; k <= order; ++k) *out++ = (jt.frame2.h.dot(b2.w[k - 1]) - jt.frame1.h.dot(b1.w[k - 1])) * ang;
     if (order >= 1) angle_rate_[o] = jt.frame2.h.dot(b2.w[0]) - jt.frame1.h.dot(b1.w[0]);
   }
-  if (jt.type != JointType::Revolute) {
+  if (jt.type != JointType::Revolute && jt.type != JointType::Planar) {
     // s = h_iᵀ(P_j − P_i), differentiated by the Leibniz rule on jets.
     Vec3 d[5], hv[5];
     for (int k = 0; k <= order; ++k) {
@@ -515,9 +530,16 @@ double* RowEvaluator::OrientationValues(const SystemState& s, int o, double* out
   const Output& op = model_.outputs[o];
   const BodyKinematics& b1 = s.Kin(op.body1);
   const BodyKinematics& b2 = s.Kin(op.body2);
+  // An orientation output relates the body frames; a spherical joint's output its two joint frames.
+  Mat3 F1 = Mat3::Identity(), F2 = Mat3::Identity();
+  if (op.kind == OutputKind::JointCoordinate) {
+    const Joint& jt = model_.joints[op.joint];
+    F1 << jt.frame1.f, jt.frame1.g, jt.frame1.h;
+    F2 << jt.frame2.f, jt.frame2.g, jt.frame2.h;
+  }
   auto& ref = orientation_ref_[o];
   if (op.sequence == "euler-parameters" || op.sequence == "axis-angle") {
-    std::array<Jet, 4> q = RelativeEulerParameters(b1, b2, order);
+    std::array<Jet, 4> q = RelativeEulerParameters(b1, QuatFromMatrix(F1), b2, QuatFromMatrix(F2), order);
     const double dot = ref[0] * q[0].c[0] + ref[1] * q[1].c[0] + ref[2] * q[2].c[0] + ref[3] * q[3].c[0];
     const bool flip = first_row_ ? q[0].c[0] < 0 : dot < 0;
     for (auto& c : q)
@@ -534,7 +556,7 @@ double* RowEvaluator::OrientationValues(const SystemState& s, int o, double* out
     return out;
   }
   std::array<Jet, 3> a;
-  const bool defined = SequenceAngles(RelativeRotation(b1, b2, order), op.sequence, &a);
+  const bool defined = SequenceAngles(RelativeRotation(b1, F1, b2, F2, order), op.sequence, &a);
   for (int c = 0; c < 3; ++c) {
     const bool value_defined = defined || c == 1;
     double value = a[c].c[0];
@@ -546,6 +568,60 @@ double* RowEvaluator::OrientationValues(const SystemState& s, int o, double* out
     orientation_rate_[o][c] = defined && order >= 1 ? a[c].Derivative(1) : 0;
   }
   *out++ = defined ? 0 : 1;
+  return out;
+}
+
+// Universal joint (frames: h1 = axis 1 on body1, f1 = axis 2 at the design; h2 = axis 2
+// on body2, f2 = axis 1 at the design): angle 1 turns the cross about axis 1,
+// atan2(g1·h2, f1·h2); angle 2 turns body2 about axis 2 relative to the cross,
+// atan2(h2·(h1 × f2), h1·f2). Both 0 at the design, continuous over turns.
+double* RowEvaluator::UniversalValues(const SystemState& s, int o, double* out) {
+  const int order = layout_.options().order;
+  const double ang = layout_.angle_factor();
+  const Output& op = model_.outputs[o];
+  const Joint& jt = model_.joints[op.joint];
+  const BodyKinematics& b1 = s.Kin(jt.body1);
+  const BodyKinematics& b2 = s.Kin(jt.body2);
+  auto jet = [&](const BodyKinematics& b, const Vec3& v) {
+    Vec3 d[5];
+    for (int k = 0; k <= order; ++k) d[k] = b.VectorDerivative(v, k);
+    return VecJet(d, order);
+  };
+  auto dot = [](const std::array<Jet, 3>& a, const std::array<Jet, 3>& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const auto f1 = jet(b1, jt.frame1.f), g1 = jet(b1, jt.frame1.g), h1 = jet(b1, jt.frame1.h);
+  const auto f2 = jet(b2, jt.frame2.f), h2 = jet(b2, jt.frame2.h);
+  const std::array<Jet, 3> h1xf2 = {h1[1] * f2[2] - h1[2] * f2[1], h1[2] * f2[0] - h1[0] * f2[2], h1[0] * f2[1] - h1[1] * f2[0]};
+  const Jet angles[2] = {Atan2(dot(g1, h2), dot(f1, h2)), Atan2(dot(h2, h1xf2), dot(h1, f2))};
+  auto& ref = orientation_ref_[o];
+  for (int a = 0; a < 2; ++a) {
+    double value = angles[a].c[0];
+    if (!first_row_) value = UnwrapAngle(std::sin(value), std::cos(value), ref[a] + orientation_rate_[o][a] * (s.t - last_t_));
+    ref[a] = value;
+    orientation_rate_[o][a] = order >= 1 ? angles[a].Derivative(1) : 0;
+    *out++ = value * ang;
+    for (int k = 1; k <= order; ++k) *out++ = angles[a].Derivative(k) * ang;
+  }
+  return out;
+}
+
+// Planar joint: the slides of P2 − P1 along the first body's frame axes f1, g1.
+double* RowEvaluator::PlanarSlides(const SystemState& s, int o, double* out) const {
+  const int order = layout_.options().order;
+  const double len = layout_.length_factor();
+  const Joint& jt = model_.joints[model_.outputs[o].joint];
+  const BodyKinematics& b1 = s.Kin(jt.body1);
+  const BodyKinematics& b2 = s.Kin(jt.body2);
+  Vec3 d[5], fv[5], gv[5];
+  for (int k = 0; k <= order; ++k) {
+    d[k] = b2.PointDerivative(jt.frame2.origin, k) - b1.PointDerivative(jt.frame1.origin, k);
+    fv[k] = b1.VectorDerivative(jt.frame1.f, k);
+    gv[k] = b1.VectorDerivative(jt.frame1.g, k);
+  }
+  const auto jd = VecJet(d, order), jf = VecJet(fv, order), jg = VecJet(gv, order);
+  for (const auto* axis : {&jf, &jg}) {
+    const Jet sl = (*axis)[0] * jd[0] + (*axis)[1] * jd[1] + (*axis)[2] * jd[2];
+    for (int k = 0; k <= order; ++k) *out++ = sl.Derivative(k) * len;
+  }
   return out;
 }
 

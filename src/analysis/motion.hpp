@@ -142,6 +142,8 @@ class RowEvaluator {
   double* PointValues(const SystemState& s, int o, double* out) const;
   double* VelocityRatioValues(const SystemState& s, int o, double* out) const;
   double* OrientationValues(const SystemState& s, int o, double* out);
+  double* UniversalValues(const SystemState& s, int o, double* out);
+  double* PlanarSlides(const SystemState& s, int o, double* out) const;
   Jet ScalarOutputJet(const SystemState& s, int o) const;
 
   const Model& model_;

@@ -23,11 +23,16 @@ double Parity(int i, int j, int k) { return (j - i + 3) % 3 == 1 && (k - j + 3) 
 }  // namespace
 
 RotationJet RelativeRotation(const BodyKinematics& b1, const BodyKinematics& b2, int order) {
+  return RelativeRotation(b1, Mat3::Identity(), b2, Mat3::Identity(), order);
+}
+
+RotationJet RelativeRotation(const BodyKinematics& b1, const Mat3& F1, const BodyKinematics& b2, const Mat3& F2,
+                             int order) {
   std::array<std::array<Jet, 3>, 3> e1, e2;  // [axis][global component]
   for (int a = 0; a < 3; ++a)
     for (int c = 0; c < 3; ++c) {
-      e1[a][c] = Component(b1, Vec3::Unit(a), c, order);
-      e2[a][c] = Component(b2, Vec3::Unit(a), c, order);
+      e1[a][c] = Component(b1, F1.col(a), c, order);
+      e2[a][c] = Component(b2, F2.col(a), c, order);
     }
   RotationJet R;
   for (int a = 0; a < 3; ++a)
@@ -69,9 +74,16 @@ bool SequenceAngles(const RotationJet& R, const std::string& seq, std::array<Jet
 }
 
 std::array<Jet, 4> RelativeEulerParameters(const BodyKinematics& b1, const BodyKinematics& b2, int order) {
+  return RelativeEulerParameters(b1, Vec4(1, 0, 0, 0), b2, Vec4(1, 0, 0, 0), order);
+}
+
+std::array<Jet, 4> RelativeEulerParameters(const BodyKinematics& b1, const Vec4& q1, const BodyKinematics& b2,
+                                           const Vec4& q2, int order) {
   Vec4 p1[kMaxOrder + 1], p2[kMaxOrder + 1];
   b1.CalcEulerDerivatives(order, p1);
   b2.CalcEulerDerivatives(order, p2);
+  // The frames' orientations p ⊗ q (q constant), order by order.
+  for (int k = 0; k <= order; ++k) p1[k] = QuatMultiply(p1[k], q1), p2[k] = QuatMultiply(p2[k], q2);
   std::array<Jet, 4> a, b;
   for (int c = 0; c < 4; ++c)
     for (int k = 0; k <= order; ++k) {

@@ -20,6 +20,10 @@ using RotationJet = std::array<std::array<Jet, 3>, 3>;
 
 /// R = A1ᵀA2 with derivatives to `order`.
 RotationJet RelativeRotation(const BodyKinematics& b1, const BodyKinematics& b2, int order);
+/// Of frames fixed in the bodies (columns of F1, F2: their axes in body coordinates):
+/// R = (A1F1)ᵀ(A2F2) — a spherical joint's frames.
+RotationJet RelativeRotation(const BodyKinematics& b1, const Mat3& F1, const BodyKinematics& b2, const Mat3& F2,
+                             int order);
 
 /// The three angles of an intrinsic sequence ("XYZ" … "ZYX", "XYX" … "ZYZ").
 /// Returns false at gimbal lock (the middle angle at ±90°, or 0/180° for a proper
@@ -29,6 +33,9 @@ bool SequenceAngles(const RotationJet& R, const std::string& sequence, std::arra
 
 /// Euler parameters of body2 relative to body1 (scalar first) with derivatives.
 std::array<Jet, 4> RelativeEulerParameters(const BodyKinematics& b1, const BodyKinematics& b2, int order);
+/// Of frames fixed in the bodies (unit quaternions q1, q2 of F1, F2).
+std::array<Jet, 4> RelativeEulerParameters(const BodyKinematics& b1, const Vec4& q1, const BodyKinematics& b2,
+                                           const Vec4& q2, int order);
 
 /// Rotation vector θ·n of unit Euler parameters q (θ = 2 atan2(|v|, q0)), smooth through θ = 0.
 std::array<Jet, 3> RotationVector(const std::array<Jet, 4>& q);

@@ -903,7 +903,7 @@ class SpecReader {
       required.insert(required.end(), {"body", "sequence"});
     } else if (type_s && *type_s == "joint") {
       out.kind = OutputKind::JointCoordinate;
-      allowed.push_back("joint");
+      allowed.insert(allowed.end(), {"joint", "sequence"});
       required.push_back("joint");
     } else if (type_s && *type_s == "distance") {
       out.kind = OutputKind::Distance;
@@ -970,14 +970,18 @@ class SpecReader {
       }
       if (it->second < 0) return;
       const Joint& j = model_.joints[it->second];
-      if (j.type != JointType::Revolute && j.type != JointType::Prismatic && j.type != JointType::Cylindrical &&
-          j.type != JointType::Screw) {
-        rd_.Error(ptr + "/joint",
-                  std::string("joint outputs exist for revolute, prismatic, cylindrical and screw joints; '") + j.name +
-                      "' is " + JointTypeName(j.type),
-                  "use a point or distance output instead");
+      if (j.type == JointType::Distance) {
+        rd_.Error(ptr + "/joint", "'" + j.name + "' is a distance link: its length does not change",
+                  "use a distance output between its two points, or an angle output");
         return;
       }
+      if (o.contains("sequence") && j.type != JointType::Spherical) {
+        rd_.Error(ptr + "/sequence", "'sequence' applies to spherical joints; '" + j.name + "' is " + JointTypeName(j.type),
+                  "remove it");
+        return;
+      }
+      out.sequence = "ZYX";
+      if (o.contains("sequence") && !ReadSequence(o, ptr, &out)) return;
       out.joint = it->second;
       out.body1 = j.body1;
       out.body2 = j.body2;
@@ -1039,8 +1043,15 @@ class SpecReader {
     auto b = BodyRef(o, "body", ptr);
     std::optional<BodyIndex> rel = kGround;
     if (o.contains("relative_to")) rel = BodyRef(o, "relative_to", ptr);
+    if (!b || !rel || !ReadSequence(o, ptr, out)) return false;
+    out->body1 = *rel;
+    out->body2 = *b;
+    return true;
+  }
+
+  bool ReadSequence(const json& o, const std::string& ptr, Output* out) {
     auto seq = rd_.String(o, "sequence", ptr);
-    if (!b || !rel || !seq) return false;
+    if (!seq) return false;
     static const std::vector<std::string> kSequences = {
         "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
         "axis-angle", "euler-parameters"};
@@ -1051,8 +1062,6 @@ class SpecReader {
                     " (rotation sequences are intrinsic: ZYX = yaw about z, then pitch about the new y, then roll)");
       return false;
     }
-    out->body1 = *rel;
-    out->body2 = *b;
     out->sequence = *seq;
     return true;
   }

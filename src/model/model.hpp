@@ -106,8 +106,8 @@ struct Output {
   BodyIndex frame = kGround;
   // VelocityRatio: d(outputs[ratio_of])/d(input), the input an output or a driver.
   int ratio_of = -1, ratio_input_output = -1, ratio_input_driver = -1;
-  // Orientation: body2 relative to body1; "XYZ" … "ZYX", "ZXZ" … (intrinsic
-  // rotation sequences), "axis-angle" or "euler-parameters".
+  // Orientation (and a spherical joint's output): body2 relative to body1; "XYZ" …
+  // "ZYX", "ZXZ" … (intrinsic rotation sequences), "axis-angle" or "euler-parameters".
   std::string sequence;
 };
 

@@ -186,3 +186,64 @@ TEST(MeasuredQuantities, CoordinateDriverEqualsTheJointTranslationDriver) {
 
 }  // namespace
 }  // namespace mechkin
+
+namespace mechkin {
+namespace {
+
+// Planar joint output: the block's slides along the table frame's f, g and its
+// turn about the normal. The table frame at (100, 100, 0) with h = z; the block's
+// origin is the joint point, so the slides are the origin's moves along f and g.
+TEST(MeasuredQuantities, PlanarJointSlidesAndAngle) {
+  json doc = testing_files::ReadJson("planar-xy-table.json");
+  doc["outputs"] = {{{"name", "table"}, {"type", "joint"}, {"joint", "table"}}};
+  const Motion m = RunDoc(doc, 1);
+  const Model model = testing_files::FromJson(doc);
+  const Vec3 f = model.joints[0].frame1.f, g = model.joints[0].frame1.g;
+  const int s1 = Col(m, "table.slide1"), s2 = Col(m, "table.slide2"), an = Col(m, "table.angle");
+  const int x = Col(m, "block.x"), y = Col(m, "block.y");
+  for (int r = 0; r < m.rows(); ++r) {
+    const Vec3 d(m.at(r, x) - 100, m.at(r, y) - 100, 0);
+    EXPECT_NEAR(m.at(r, s1), f.dot(d), 1e-9) << r;
+    EXPECT_NEAR(m.at(r, s2), g.dot(d), 1e-9) << r;
+    EXPECT_NEAR(m.at(r, an), 45 * m.at(r, 0), 1e-9) << r;  // the rotation driver's value
+    EXPECT_NEAR(m.at(r, an + 1), 45, 1e-9) << r;
+  }
+}
+
+// Universal joint of the Hooke coupling: the cross's turn about axis 1 in the
+// input shaft against the closed form (axis 2 ⊥ axis 1 and ⊥ the output shaft).
+TEST(MeasuredQuantities, UniversalJointAngles) {
+  json doc = testing_files::ReadJson("hooke-joint-30deg.json");
+  doc["outputs"].push_back({{"name", "cross"}, {"type", "joint"}, {"joint", "cross"}});
+  const Motion m = RunDoc(doc, 1);
+  const int a1 = Col(m, "cross.angle1"), a2 = Col(m, "cross.angle2"), out = Col(m, "output_angle");
+  const Vec3 shaft2(std::cos(M_PI / 6), std::sin(M_PI / 6), 0), f1_0(-0.5, std::sqrt(3.0) / 2, 0);
+  for (int r = 0; r < m.rows(); ++r) {
+    const double th = 2 * M_PI * m.at(r, 0);
+    const Mat3 Rin = Eigen::AngleAxisd(th, Vec3::UnitX()).toRotationMatrix();
+    const Vec3 axis1 = Rin * Vec3::UnitZ(), f1 = Rin * f1_0, g1 = axis1.cross(f1);
+    const Vec3 axis2 = -shaft2.cross(axis1).normalized();
+    EXPECT_NEAR(m.at(r, a1) * M_PI / 180, std::atan2(g1.dot(axis2), f1.dot(axis2)), 1e-9) << r;
+    // Angle 2: body2's f (axis 1 at the design, z) turned with the output shaft, about axis 2 from axis 1.
+    const Mat3 Rout = Eigen::AngleAxisd(m.at(r, out) * M_PI / 180, shaft2).toRotationMatrix();
+    const Vec3 f2 = Rout * Vec3::UnitZ();
+    EXPECT_NEAR(m.at(r, a2) * M_PI / 180, std::atan2(axis2.dot(axis1.cross(f2)), axis1.dot(f2)), 1e-9) << r;
+  }
+}
+
+// A spherical joint's output is the orientation of its body2 frame in its body1
+// frame: for bodies and frames drawn along the global axes, the orientation output.
+TEST(MeasuredQuantities, SphericalJointAsASequence) {
+  json doc = testing_files::ReadJson("double-wishbone-suspension.json");
+  doc["outputs"].push_back({{"name", "ball"}, {"type", "joint"}, {"joint", "upper_ball"}, {"sequence", "XYZ"}});
+  doc["outputs"].push_back({{"name", "rel"}, {"type", "orientation"}, {"body", "upright"}, {"relative_to", "upper_arm"},
+                            {"sequence", "XYZ"}});
+  const Motion m = RunDoc(doc, 2);
+  const int b = Col(m, "ball.angle1"), o = Col(m, "rel.angle1");
+  for (int r = 0; r < m.rows(); ++r)
+    for (int c = 0; c < 9; ++c) EXPECT_NEAR(m.at(r, b + c), m.at(r, o + c), 1e-12) << r << " " << c;
+  EXPECT_GT(std::abs(m.at(m.rows() / 4, b)), 1.0);  // the arm turns against the upright
+}
+
+}  // namespace
+}  // namespace mechkin
