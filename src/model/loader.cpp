@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -1377,6 +1378,32 @@ class SpecReader {
                  "check the number and the unit: a far point sets the characteristic length and so every tolerance");
   }
 
+  // A unit slip: `2*pi*t` in a file whose angles are degrees turns 6.28°, not a turn.
+  void WarnRadiansInDegrees(const Driver& drv, const std::string& ptr, double swing) {
+    const bool angle = drv.kind == DriverKind::JointRotation || drv.kind == DriverKind::BodyRotation;
+    const std::string text = drv.function.Describe();
+    if (!angle || model_.units.angle_name != "deg" || drv.function.is_table() || !(swing < 10)) return;
+    if (text.find("pi") == std::string::npos) return;
+    rd_.Warn(ptr, "driver '" + drv.name + "' uses pi but swings only " + FormatTime(swing) +
+                      " deg over the analysis: the file's angles are degrees",
+             "for a turn write 360*t (not 2*pi*t), or set \"units\": {\"angle\": \"rad\"}");
+  }
+
+  // A distance link 1000 times longer or shorter than the mechanism: a slipped unit or digit.
+  void WarnOddLengths() {
+    const double L = model_.characteristic_length;
+    for (size_t j = 0; j < model_.joints.size(); ++j) {
+      const Joint& jt = model_.joints[j];
+      if (jt.type != JointType::Distance || !(L > 0)) continue;
+      if (jt.length > 1000 * L || jt.length < L / 1000)
+        rd_.Warn("/joints/" + std::to_string(j), "distance link '" + jt.name + "' is " + FormatTime(jt.length / length_) +
+                                                     " " + model_.units.length_name + " long, " +
+                                                     (jt.length > L ? "over 1000 times" : "under 1/1000 of") +
+                                                     " the mechanism's size (" + FormatTime(L / length_) + ")",
+                 "check the number and its unit");
+    }
+  }
+
   // Every driver function over the analysis span, on the table's own grid (at most
   // 2001 points, both ends included): where it or one of its four derivatives is
   // undefined or not finite, `run` could not go on, so the file is refused here.
@@ -1391,6 +1418,7 @@ class SpecReader {
       const std::string ptr = driver_pointers_[d] + "/function";
       const bool angle = drv.kind == DriverKind::JointRotation || drv.kind == DriverKind::BodyRotation;
       double worst_rate = 0, worst_t = an.start;
+      double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
       for (int k = 0; k <= points; ++k) {
         const double t = k == points ? an.end : an.start + (an.end - an.start) * k / points;
         std::string why;
@@ -1399,6 +1427,7 @@ class SpecReader {
           for (int o = 0; o <= kMaxOrder && why.empty(); ++o)
             if (!std::isfinite(j.c[o])) why = o == 0 ? "its value is not finite" : "its derivative of order " + std::to_string(o) + " is not finite";
           if (why.empty() && std::abs(j.c[1]) > worst_rate) { worst_rate = std::abs(j.c[1]); worst_t = t; }
+          if (why.empty()) lowest = std::min(lowest, j.c[0]), highest = std::max(highest, j.c[0]);
         } catch (const std::exception& e) {
           why = e.what();
         }
@@ -1408,6 +1437,7 @@ class SpecReader {
           break;
         }
       }
+      WarnRadiansInDegrees(drv, ptr, (highest - lowest) / angle_);
       const double per_step = worst_rate * (an.end - an.start) / an.steps;
       const double limit = angle ? M_PI / 2 : model_.characteristic_length;
       if (per_step > limit)
@@ -1840,6 +1870,7 @@ LoadResult LoadMechanismText(const std::string& text, const std::string& source_
   Model& model = spec.model();
   model.characteristic_length = CharacteristicLength(model);
   spec.WarnFarPoints();
+  spec.WarnOddLengths();
   spec.CheckDriverSpans();
   if (!result.errors.empty()) return result;
   result.model = std::move(model);
