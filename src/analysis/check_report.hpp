@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/branches.hpp"
 #include "mobility/mobility.hpp"
 #include "model/loader.hpp"
 
@@ -56,6 +57,7 @@ struct CheckReport {
   std::vector<BodyGeometry> geometry;       // per moving body with two or more joints
   std::vector<Parameter> parameters;        // resolved values
   std::string length_unit, angle_unit;      // of geometry and parameters
+  std::optional<BranchCount> branches;      // with `check --branches`
   /// Valid and every expectation held.
   bool ok() const;
 };

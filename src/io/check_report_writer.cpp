@@ -174,6 +174,10 @@ void PrintSummary(const CheckReport& r, std::ostream& out) {
   out << "  drivers: " << r.drivers << "\n";
   out << "  Grübler–Kutzbach count: " << r.grubler << " (after drivers: " << r.dof_after_drivers_count << ")\n";
   if (r.mobility) PrintMobility(*r.mobility, r.drivers, out);
+  if (r.branches)
+    out << "  assembly branches at the drivers' design values: " << r.branches->branches << " (from "
+        << r.branches->restarts << " random restarts, " << r.branches->converged
+        << " assembled; joints mounted backwards not counted)\n";
   PrintGeometry(r, out);
 }
 
@@ -199,6 +203,9 @@ json CheckReportJson(const CheckReport& r) {
   j["dof_after_drivers_count"] = r.dof_after_drivers_count;
   if (r.mobility) j["mobility"] = MobilityJson(*r.mobility, r.drivers);
   j["geometry"] = GeometryJson(r);
+  if (r.branches)
+    j["branches"] = {{"count", r.branches->branches}, {"restarts", r.branches->restarts},
+                     {"converged", r.branches->converged}, {"distances_from_design", r.branches->distances}};
   j["parameters"] = ParametersJson(r.parameters);
   return j;
 }

@@ -49,3 +49,24 @@ TEST(Branch, HintOnAnUnknownJointIsAnError) {
 
 }  // namespace
 }  // namespace mechkin
+
+#include "analysis/branches.hpp"
+
+namespace mechkin {
+namespace {
+
+// A four-bar at a given crank angle closes in two ways (open and crossed); so does
+// a slider-crank (the rod on either side of the crank pin). Joints mounted
+// backwards (a body flipped over) are not counted.
+TEST(Branch, CountsTheAssemblies) {
+  const Model four_bar = testing_files::FromJson(testing_files::PlanarFourBar(40, 120, 80, 100, 60, 10));
+  const BranchCount fb = CountBranches(four_bar, 200, 3);
+  EXPECT_EQ(fb.branches, 2);
+  EXPECT_GT(fb.converged, 100);
+  EXPECT_NEAR(fb.distances[0], 0, 1e-9);  // the design pose itself first
+  const Model slider = testing_files::FromJson(testing_files::ReadJson("offset-slider-crank.json"));
+  EXPECT_EQ(CountBranches(slider, 200, 3).branches, 2);
+}
+
+}  // namespace
+}  // namespace mechkin

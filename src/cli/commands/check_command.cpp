@@ -15,6 +15,10 @@ void SetupCheckCommand(CLI::App& app, CheckOptions* options) {
       ->check(CLI::IsMember({"text", "json"}))
       ->default_str("text");
   cmd->add_option("--set", options->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
+  cmd->add_flag("--branches", options->branches,
+                "Count the assembly branches at the drivers' design values (random restarts of the assembly)");
+  cmd->add_option("--restarts", options->restarts, "Random starts for --branches (default 200)")
+      ->check(CLI::Range(1, 1000000));
 }
 
 int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) {
@@ -24,7 +28,9 @@ int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) 
   for (const auto& f : options.files) {
     CheckReport r;
     try {
-      r = CheckLoaded(f, LoadMechanismFile(f, overrides));
+      const LoadResult loaded = LoadMechanismFile(f, overrides);
+      r = CheckLoaded(f, loaded);
+      if (options.branches && loaded.ok()) r.branches = CountBranches(*loaded.model, options.restarts);
     } catch (const std::exception& e) {
       // Defensive: a failure on one file must not take the others' reports with it.
       r = CheckReport{};

@@ -19,6 +19,8 @@ struct CheckOptions {
   std::vector<std::string> files;
   std::string format = "text";  // text | json
   std::vector<std::string> set;  // --set NAME=VALUE
+  bool branches = false;         // count the assembly branches at the design driver values
+  int restarts = 200;
 };
 
 void SetupCheckCommand(CLI::App& app, CheckOptions* options);
