@@ -92,7 +92,8 @@ case("orientation-not-rotation", "/bodies/0/orientation/matrix",
 case("orientation-zero-quaternion", "/bodies/0/orientation/euler_parameters",
      setp(["bodies", 0, "orientation"], {"euler_parameters": [0, 0, 0, 0]}))
 case("output-unknown-type", "/outputs/0/type", setp(["outputs", 0, "type"], "velocity"))
-case("output-joint-spherical", "/outputs/0/joint", setp(["outputs", 0], {"name": "p", "type": "joint", "joint": "pin"}))
+case("output-sequence-on-revolute", "/outputs/0/sequence",
+     setp(["outputs", 0], {"name": "p", "type": "joint", "joint": "bearing", "sequence": "ZYX"}))
 case("expect-bad-driven", "/expect/driven", lambda d: d.__setitem__("expect", {"driven": "fully"}))
 case("json-syntax-error", "", None, '{"mechkin": 1, "bodies": [ }')
 case("empty-file", "", None, "")
