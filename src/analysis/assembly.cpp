@@ -60,6 +60,15 @@ bool AssembleDesignPose(const ConstraintSystem& sys, const SolveOptions& solve, 
   return false;
 }
 
+double PoseDistance(const SystemState& a, const SystemState& b, double length) {
+  double d = 0;
+  for (size_t k = 0; k < a.bodies.size(); ++k) {
+    d = std::max(d, (a.bodies[k].r[0] - b.bodies[k].r[0]).norm() / length);
+    d = std::max(d, 2 * std::acos(std::min(1.0, std::abs(a.bodies[k].p.dot(b.bodies[k].p)))));
+  }
+  return d;
+}
+
 bool AssembleHintedBranch(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
                           std::string* message) {
   const Model& model = sys.model();

@@ -25,6 +25,8 @@ std::string DescribeResiduals(const ConstraintSystem& sys, const SystemState& s,
 bool AssembleDesignPose(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
                         std::string* message);
 /// Continuation from the design driver values to those at t = start.
+/// Largest body move between two poses: |Δr| / length and the rotation angle (rad).
+double PoseDistance(const SystemState& a, const SystemState& b, double length);
 /// With `analysis.branch` hints: from the assembled design pose, first the joints
 /// with the hinted joint coordinates held (min-norm Gauss–Newton), then the joints
 /// and drivers again from there, so the pose lands on the hinted branch. True

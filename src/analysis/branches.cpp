@@ -10,15 +10,6 @@ namespace mechkin {
 
 namespace {
 
-// Largest body move between two poses: |Δr| / L and the rotation angle.
-double PoseDistance(const SystemState& a, const SystemState& b, double length) {
-  double d = 0;
-  for (size_t k = 0; k < a.bodies.size(); ++k) {
-    d = std::max(d, (a.bodies[k].r[0] - b.bodies[k].r[0]).norm() / length);
-    d = std::max(d, 2 * std::acos(std::min(1.0, std::abs(a.bodies[k].p.dot(b.bodies[k].p)))));
-  }
-  return d;
-}
 
 // Every axis-carrying joint with its two axes pointing the same way.
 bool AxesAsDrawn(const Model& m, const SystemState& s) {

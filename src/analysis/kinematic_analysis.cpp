@@ -44,15 +44,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Largest move between two poses: |Δr| / L and the rotation angle, per body.
-double PoseDistance(const SystemState& a, const SystemState& b, double length) {
-  double d = 0;
-  for (size_t k = 0; k < a.bodies.size(); ++k) {
-    d = std::max(d, (a.bodies[k].r[0] - b.bodies[k].r[0]).norm() / length);
-    d = std::max(d, 2 * std::acos(std::min(1.0, std::abs(a.bodies[k].p.dot(b.bodies[k].p)))));
-  }
-  return d;
-}
 
 WorkspaceOptions WorkspaceOptionsOf(const AnalysisOptions& o) {
   WorkspaceOptions w;

@@ -27,6 +27,17 @@ std::array<Jet, 3> VecJet(const Vec3* d, int order) {
   return j;
 }
 
+// A one-coordinate output measured in angle units (revolute joint or angle output).
+bool IsAngleOutput(const Model& model, int output) {
+  const Output& x = model.outputs[output];
+  return x.kind == OutputKind::Angle ||
+         (x.kind == OutputKind::JointCoordinate && model.joints[x.joint].type == JointType::Revolute);
+}
+
+bool IsRotationDriver(const Driver& d) {
+  return d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation;
+}
+
 bool Selected(bool all, const std::vector<std::string>& names, const std::string& name) {
   return all || std::find(names.begin(), names.end(), name) != names.end();
 }
@@ -140,18 +151,11 @@ void MotionLayout::AddOutput(const Model& model, int o) {
 // (at order 0 the column reads NaN). Unit: the output's unit per the input's.
 void MotionLayout::AddVelocityRatio(const Model& model, int o) {
   const Output& out = model.outputs[o];
-  auto is_angle = [&](int output) {
-    const Output& x = model.outputs[output];
-    return x.kind == OutputKind::Angle ||
-           (x.kind == OutputKind::JointCoordinate && model.joints[x.joint].type == JointType::Revolute);
-  };
   const std::string L = options_.si ? "m" : model.units.length_name;
   const std::string A = options_.si ? "rad" : model.units.angle_name;
-  const std::string num = is_angle(out.ratio_of) ? A : L;
-  const bool input_angle = out.ratio_input_output >= 0
-                               ? is_angle(out.ratio_input_output)
-                               : model.drivers[out.ratio_input_driver].kind == DriverKind::JointRotation ||
-                                     model.drivers[out.ratio_input_driver].kind == DriverKind::BodyRotation;
+  const std::string num = IsAngleOutput(model, out.ratio_of) ? A : L;
+  const bool input_angle = out.ratio_input_output >= 0 ? IsAngleOutput(model, out.ratio_input_output)
+                                                       : IsRotationDriver(model.drivers[out.ratio_input_driver]);
   const std::string den = input_angle ? A : L;
   const std::string unit = num == den ? "" : num + "/" + den;
   for (int k = 0; k <= std::max(options_.order - 1, 0); ++k)
@@ -490,21 +494,15 @@ double* RowEvaluator::VelocityRatioValues(const SystemState& s, int o, double* o
   const int order = layout_.options().order;
   const Output& op = model_.outputs[o];
   auto factor = [&](bool angle) { return angle ? layout_.angle_factor() : layout_.length_factor(); };
-  auto is_angle = [&](int x) {
-    const Output& q = model_.outputs[x];
-    return q.kind == OutputKind::Angle ||
-           (q.kind == OutputKind::JointCoordinate && model_.joints[q.joint].type == JointType::Revolute);
-  };
   const Jet num = ScalarOutputJet(s, op.ratio_of);
   Jet den;
   double den_factor;
   if (op.ratio_input_output >= 0) {
     den = ScalarOutputJet(s, op.ratio_input_output);
-    den_factor = factor(is_angle(op.ratio_input_output));
+    den_factor = factor(IsAngleOutput(model_, op.ratio_input_output));
   } else {
-    const Driver& d = model_.drivers[op.ratio_input_driver];
     den = s.driver_values[op.ratio_input_driver];
-    den_factor = factor(d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation);
+    den_factor = factor(IsRotationDriver(model_.drivers[op.ratio_input_driver]));
   }
   Jet p, q;  // the derivative series, to order − 1
   for (int k = 0; k < order; ++k) p.c[k] = (k + 1) * num.c[k + 1], q.c[k] = (k + 1) * den.c[k + 1];
@@ -514,7 +512,7 @@ double* RowEvaluator::VelocityRatioValues(const SystemState& s, int o, double* o
     return out;
   }
   const Jet r = p / q;
-  const double scale = factor(is_angle(op.ratio_of)) / den_factor;
+  const double scale = factor(IsAngleOutput(model_, op.ratio_of)) / den_factor;
   for (int k = 0; k < columns; ++k) *out++ = r.Derivative(k) * scale;
   return out;
 }

@@ -2,6 +2,8 @@
 #include <cstdlib>
 #include "cli/commands/load_for_command.hpp"
 
+#include "io/output_file.hpp"
+
 #include "model/loader.hpp"
 
 namespace mechkin {
@@ -14,6 +16,17 @@ std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err, 
     return std::nullopt;
   }
   return std::move(loaded.model);
+}
+
+bool WriteReport(const std::string& path, const std::vector<std::string>& inputs, const std::string& text,
+                 const std::string& command, std::ostream& out, std::ostream& err) {
+  OutputFile file;
+  std::string why;
+  if (!file.Open(path, inputs, &why, &out) || !file.Write(text) || !file.Commit("", &why)) {
+    err << "mechkin " << command << ": " << why << "\n";
+    return false;
+  }
+  return true;
 }
 
 bool ParseOverrides(const std::vector<std::string>& settings, ParameterOverrides* out, std::ostream& err) {

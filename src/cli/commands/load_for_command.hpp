@@ -16,6 +16,10 @@ namespace mechkin {
 /// `overrides`: --set values of the file's parameters.
 std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err,
                                     const ParameterOverrides& overrides = {});
+/// Writes a finished report to `path` (empty or "-": `out`) atomically; on failure
+/// prints "mechkin COMMAND: why" and returns false. `inputs`: files it must not overwrite.
+bool WriteReport(const std::string& path, const std::vector<std::string>& inputs, const std::string& text,
+                 const std::string& command, std::ostream& out, std::ostream& err);
 /// Reads "--set NAME=NUMBER" options; false (the problem printed) for a malformed one.
 bool ParseOverrides(const std::vector<std::string>& settings, ParameterOverrides* out, std::ostream& err);
 

@@ -4,7 +4,6 @@
 
 #include "analysis/range.hpp"
 #include "cli/commands/load_for_command.hpp"
-#include "io/output_file.hpp"
 #include "io/range_report_writer.hpp"
 
 namespace mechkin {
@@ -42,12 +41,7 @@ int RunRangeCommand(const RangeCommandOptions& o, std::ostream& out, std::ostrea
   std::ostringstream text;
   if (o.format == "json") text << RangeReportJson(report).dump(2) << "\n";
   else PrintRangeReport(report, text);
-  OutputFile file;
-  std::string why;
-  if (!file.Open(o.output, {o.file}, &why, &out) || !file.Write(text.str()) || !file.Commit("", &why)) {
-    err << "mechkin range: " << why << "\n";
-    return 1;
-  }
+  if (!WriteReport(o.output, {o.file}, text.str(), "range", out, err)) return 1;
   return 0;
 }
 

@@ -2,7 +2,6 @@
 
 #include "analysis/sweep.hpp"
 #include "cli/commands/load_for_command.hpp"
-#include "io/output_file.hpp"
 #include "io/sweep_writer.hpp"
 
 namespace mechkin {
@@ -42,14 +41,7 @@ bool ParseShard(const std::string& s, SweepOptions* options) {
 
 bool Write(const SweepCommandOptions& o, const SweepResult& result, std::ostream& out, std::ostream& err) {
   const std::string text = o.format == "json" ? SweepJson(result).dump(1) + "\n" : SweepCsv(result);
-  OutputFile file;
-  std::string why;
-  if (!file.Open(o.output, o.merge ? o.files : std::vector<std::string>{o.files.front()}, &why, &out) ||
-      !file.Write(text) || !file.Commit("", &why)) {
-    err << "mechkin sweep: " << why << "\n";
-    return false;
-  }
-  return true;
+  return WriteReport(o.output, o.merge ? o.files : std::vector<std::string>{o.files.front()}, text, "sweep", out, err);
 }
 
 // The variants: the grid's, or samples within the parameters' ranges.

@@ -4,7 +4,6 @@
 
 #include "analysis/tolerance.hpp"
 #include "cli/commands/load_for_command.hpp"
-#include "io/output_file.hpp"
 #include "io/tolerance_report_writer.hpp"
 
 namespace mechkin {
@@ -42,12 +41,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o, std::ostream& out, std
   std::ostringstream text;
   if (o.format == "json") text << ToleranceReportJson(report).dump(2) << "\n";
   else PrintToleranceReport(report, text);
-  OutputFile file;
-  std::string why;
-  if (!file.Open(o.output, {o.file}, &why, &out) || !file.Write(text.str()) || !file.Commit("", &why)) {
-    err << "mechkin tolerance: " << why << "\n";
-    return 1;
-  }
+  if (!WriteReport(o.output, {o.file}, text.str(), "tolerance", out, err)) return 1;
   if (!report.ok) err << "mechkin tolerance: " << o.file << ": " << report.message << "\n";
   return report.ok ? 0 : 1;
 }
