@@ -124,8 +124,20 @@ class RotationDriver : public Constraint {
   /// Exact gradient of θ (§3.9): rows for π'_i and π'_j.
   void CalcAngleGradient(const ConstraintInput& in, Vec3* d_pi_i, Vec3* d_pi_j) const;
 
- private:
+ protected:
   Vec3 fi_, gi_, fj_, hi_, hj_;
+};
+
+/// §3.9 GRRD off the joint manifold: the same Φ = θ_ij − f(t) and gradient, for two
+/// bodies that no revolute keeps aligned (an `angle` driver between body vectors).
+/// RHS_k = f^(k) − θ^(k)|bias: θ's k-th derivative on Taylor jets of the frame vectors
+/// with their order-k terms replaced by the bias A B[k] a' (the part without the
+/// unknowns ω'^(k−1)); κ = λ d/dt(Φ_π')ᵀ from the gradient on first-order jets.
+class AngleDriver : public RotationDriver {
+ public:
+  using RotationDriver::RotationDriver;
+  void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
+  void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
 };
 
 /// §3.10 SDA, general two-body form: h_iᵀ d_ij − λ_s θ_ij = 0, λ_s = pitch / 2π.

@@ -74,7 +74,10 @@ void AddDriver(const Driver& d, int index, std::vector<ConstraintEntry>* out) {
   switch (d.kind) {
     case DriverKind::JointRotation:
     case DriverKind::BodyRotation:
-      Add(out, std::make_unique<RotationDriver>(d.body1, d.body2, d.frame1, d.frame2), true, index, {"driven angle"});
+      if (d.general_angle)
+        Add(out, std::make_unique<AngleDriver>(d.body1, d.body2, d.frame1, d.frame2), true, index, {"driven angle"});
+      else
+        Add(out, std::make_unique<RotationDriver>(d.body1, d.body2, d.frame1, d.frame2), true, index, {"driven angle"});
       break;
     case DriverKind::JointTranslation:
       Add(out, std::make_unique<Dot2DistanceDriver>(d.body1, d.body2, d.frame1.h, d.frame1.origin, d.frame2.origin),

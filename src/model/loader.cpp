@@ -787,13 +787,17 @@ class SpecReader {
     } else if (type_s && *type_s == "coordinate") {
       allowed.insert(allowed.end(), {"body", "point", "axis", "axis_body"});
       required.insert(required.end(), {"body", "point", "axis"});
+    } else if (type_s && *type_s == "angle") {
+      allowed.insert(allowed.end(), {"body1", "body2", "about", "vector"});
+      required.insert(required.end(), {"body1", "body2", "about"});
     } else {
       if (type_s) {
-        const std::string g = DidYouMean(*type_s, {"rotation", "translation", "distance", "coordinate"});
+        const std::string g = DidYouMean(*type_s, {"rotation", "translation", "distance", "coordinate", "angle"});
         rd_.Error(ptr + "/type", "unknown driver type '" + Shorten(*type_s) + "'",
-                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: rotation, translation, distance, coordinate");
+                  (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: rotation, translation, distance, coordinate, angle");
       }
-      allowed.insert(allowed.end(), {"joint", "body", "axis", "body1", "point1", "body2", "point2", "point", "axis_body"});
+      allowed.insert(allowed.end(), {"joint", "body", "axis", "body1", "point1", "body2", "point2", "point", "axis_body",
+                                     "about", "vector"});
     }
     rd_.CheckObject(d, ptr, allowed, required, type_s ? "a " + *type_s + " driver" : "a driver");
     auto name = rd_.Name(d, ptr, "driver");
@@ -817,6 +821,9 @@ class SpecReader {
       ok = DriverBetweenPoints(d, ptr, &drv) && ok;
     } else if (type_s && *type_s == "coordinate") {
       ok = DriverOnCoordinate(d, ptr, &drv) && ok;
+    } else if (type_s && *type_s == "angle") {
+      ok = DriverOnAngle(d, ptr, &drv) && ok;
+      scale = angle_;
     } else {
       ok = false;
     }
@@ -1707,6 +1714,42 @@ class SpecReader {
     drv->body2 = *b;
     auto [r1, A1] = Pose(*ab);
     auto [r2, A2] = Pose(*b);
+    drv->frame1 = ToLocal(global, r1, A1);
+    drv->frame2 = ToLocal(global, r2, A2);
+    return true;
+  }
+
+  // {"type": "angle", "body1", "body2", "about", "vector"?}: the turn of body2's
+  // `vector` (default: a direction across `about`) about `about` (fixed in body1),
+  // relative to body1, 0 at the design pose — the general rotation driver (§3.9) on
+  // two bodies that no revolute keeps aligned.
+  bool DriverOnAngle(const json& d, const std::string& ptr, Driver* drv) {
+    drv->kind = DriverKind::BodyRotation;
+    drv->general_angle = true;
+    auto b1 = BodyRef(d, "body1", ptr);
+    auto b2 = BodyRef(d, "body2", ptr);
+    auto about = rd_.Vector(d, "about", ptr, true);
+    std::optional<Vec3> vector;
+    if (d.contains("vector")) {
+      vector = rd_.Vector(d, "vector", ptr, true);
+      if (!vector) return false;
+      if (about && vector->normalized().cross(about->normalized()).norm() < 1e-6) {
+        rd_.Error(ptr + "/vector", "'vector' is parallel to 'about': its turn about it is undefined",
+                  "give a direction across the axis");
+        return false;
+      }
+    }
+    if (!b1 || !b2 || !about) return false;
+    if (*b1 == *b2) {
+      rd_.Error(ptr + "/body2", "an angle driver between body '" + model_.BodyName(*b1) + "' and itself",
+                "name two different bodies");
+      return false;
+    }
+    const JointFrame global = vector ? MakeFrame(Vec3::Zero(), *about, *vector) : MakeFrame(Vec3::Zero(), *about);
+    drv->body1 = *b1;
+    drv->body2 = *b2;
+    auto [r1, A1] = Pose(*b1);
+    auto [r2, A2] = Pose(*b2);
     drv->frame1 = ToLocal(global, r1, A1);
     drv->frame2 = ToLocal(global, r2, A2);
     return true;

@@ -88,6 +88,9 @@ struct Driver {
   JointFrame frame1, frame2;         // frames of the driven coordinate (joint or body/ground)
   Vec3 point1 = Vec3::Zero(), point2 = Vec3::Zero();  // Distance: local points
   TimeFunction function;             // SI value: rad or m
+  // BodyRotation between two bodies no revolute keeps aligned (an `angle` driver):
+  // the general rotation driver's right-hand sides (constraints/families.hpp AngleDriver).
+  bool general_angle = false;
 };
 
 enum class OutputKind { Point, JointCoordinate, Distance, Angle, VelocityRatio, Orientation };
