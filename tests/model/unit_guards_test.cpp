@@ -33,3 +33,19 @@ TEST(UnitGuards, DistanceLinkThousandTimesTheMechanism) {
 
 }  // namespace
 }  // namespace mechkin
+
+namespace mechkin {
+namespace {
+
+// The frame pivot typed 1000 for 100: the rocker grows to 869 mm; D is far from every
+// other joint of ground and of the rocker (7× the other links' median, 120 mm).
+TEST(UnitGuards, StrayJointPoint) {
+  nlohmann::json doc = testing_files::ReadJson("planar-four-bar.json");
+  EXPECT_TRUE(LoadMechanismText(doc.dump(), "inline").warnings.empty());
+  doc["joints"][3]["origin"][0] = 1000.0;
+  const LoadResult r = LoadMechanismText(doc.dump(), "inline");
+  EXPECT_TRUE(Warns(r, "/joints/3", "typical length")) << (r.warnings.empty() ? "" : r.warnings[0].ToString());
+}
+
+}  // namespace
+}  // namespace mechkin
