@@ -38,6 +38,56 @@ bool IsRotationDriver(const Driver& d) {
   return d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation;
 }
 
+// d = P2 − P1 of an output's two points: |d| on jets (SI).
+Jet DistanceJet(const SystemState& s, const Output& op, int order) {
+  Vec3 d[5];
+  for (int k = 0; k <= order; ++k)
+    d[k] = s.Kin(op.body2).PointDerivative(op.point2, k) - s.Kin(op.body1).PointDerivative(op.point1, k);
+  const auto j = VecJet(d, order);
+  return Sqrt(j[0] * j[0] + j[1] * j[1] + j[2] * j[2]);
+}
+
+// A joint's slide s = h_iᵀ(P_j − P_i), differentiated by the Leibniz rule on jets (SI).
+Jet SlideJet(const SystemState& s, const Joint& jt, int order) {
+  const BodyKinematics& b1 = s.Kin(jt.body1);
+  const BodyKinematics& b2 = s.Kin(jt.body2);
+  Vec3 d[5], hv[5];
+  for (int k = 0; k <= order; ++k) {
+    d[k] = b2.PointDerivative(jt.frame2.origin, k) - b1.PointDerivative(jt.frame1.origin, k);
+    hv[k] = b1.VectorDerivative(jt.frame1.h, k);
+  }
+  const auto jd = VecJet(d, order), jh = VecJet(hv, order);
+  return jh[0] * jd[0] + jh[1] * jd[1] + jh[2] * jd[2];
+}
+
+// Angle output between u = A1·v1 and w = A2·v2 on jets (derivatives by the chain rule):
+//   unsigned: θ = atan2(|u × w|, u·w) in [0, π];
+//   about a (fixed in body1): θ = atan2(a·(u × w), u·w − (a·u)(a·w)), the turn from u to w.
+// *y, *x: the atan2 arguments' values (for continuity over turns). Throws JetDomainError
+// for the unsigned angle's derivatives at 0 or π, where they do not exist.
+Jet AngleJet(const SystemState& s, const Output& op, int order, double* y_out, double* x_out) {
+  const BodyKinematics& b1 = s.Kin(op.body1);
+  const BodyKinematics& b2 = s.Kin(op.body2);
+  Vec3 uk[5], wk[5], ak[5];
+  for (int k = 0; k <= order; ++k) {
+    uk[k] = b1.VectorDerivative(op.vector1, k);
+    wk[k] = b2.VectorDerivative(op.vector2, k);
+    ak[k] = b1.VectorDerivative(op.about, k);
+  }
+  const auto u = VecJet(uk, order), w = VecJet(wk, order), a = VecJet(ak, order);
+  const std::array<Jet, 3> c = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+  const Jet dot = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+  if (op.signed_about) {
+    const Jet y = a[0] * c[0] + a[1] * c[1] + a[2] * c[2];
+    const Jet x = dot - (a[0] * u[0] + a[1] * u[1] + a[2] * u[2]) * (a[0] * w[0] + a[1] * w[1] + a[2] * w[2]);
+    *y_out = y.c[0], *x_out = x.c[0];
+    return Atan2(y, x);
+  }
+  *y_out = std::sqrt(c[0].c[0] * c[0].c[0] + c[1].c[0] * c[1].c[0] + c[2].c[0] * c[2].c[0]);
+  *x_out = dot.c[0];
+  return Atan2(Sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), dot);
+}
+
 bool Selected(bool all, const std::vector<std::string>& names, const std::string& name) {
   return all || std::find(names.begin(), names.end(), name) != names.end();
 }
@@ -358,10 +408,7 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
   if (op.kind == OutputKind::VelocityRatio) return VelocityRatioValues(s, o, out);
   if (op.kind == OutputKind::Orientation) return OrientationValues(s, o, out);
   if (op.kind == OutputKind::Distance) {
-    Vec3 d[5];
-    for (int k = 0; k <= order; ++k) d[k] = b2.PointDerivative(op.point2, k) - b1.PointDerivative(op.point1, k);
-    const auto j = VecJet(d, order);
-    const Jet dist = Sqrt(j[0] * j[0] + j[1] * j[1] + j[2] * j[2]);
+    const Jet dist = DistanceJet(s, op, order);
     for (int k = 0; k <= order; ++k) *out++ = dist.Derivative(k) * len;
     return out;
   }
@@ -383,55 +430,27 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
     if (order >= 1) angle_rate_[o] = jt.frame2.h.dot(b2.w[0]) - jt.frame1.h.dot(b1.w[0]);
   }
   if (jt.type != JointType::Revolute && jt.type != JointType::Planar) {
-    // s = h_iᵀ(P_j − P_i), differentiated by the Leibniz rule on jets.
-    Vec3 d[5], hv[5];
-    for (int k = 0; k <= order; ++k) {
-      d[k] = b2.PointDerivative(jt.frame2.origin, k) - b1.PointDerivative(jt.frame1.origin, k);
-      hv[k] = b1.VectorDerivative(jt.frame1.h, k);
-    }
-    const auto jd = VecJet(d, order), jh = VecJet(hv, order);
-    const Jet sl = jh[0] * jd[0] + jh[1] * jd[1] + jh[2] * jd[2];
+    const Jet sl = SlideJet(s, jt, order);
     for (int k = 0; k <= order; ++k) *out++ = sl.Derivative(k) * len;
   }
   return out;
 }
 
-// Angle between u = A1·v1 and w = A2·v2 on jets (derivatives by the chain rule):
-//   unsigned: θ = atan2(|u × w|, u·w) in [0, π];
-//   about a (fixed in body1): θ = atan2(a·(u × w), u·w − (a·u)(a·w)), the turn from u
-//   to w about a, continuous over turns like a joint angle (absolute, not from the design).
-// Where the unsigned angle is 0 or π its derivatives do not exist: they read NaN.
+// Angle outputs (AngleJet): the signed angle continuous over turns like a joint angle
+// (absolute, not from the design); where the unsigned angle is 0 or π its derivatives
+// do not exist and read NaN.
 double* RowEvaluator::AngleValues(const SystemState& s, int o, double* out) {
   const int order = layout_.options().order;
   const double ang = layout_.angle_factor();
   const Output& op = model_.outputs[o];
-  const BodyKinematics& b1 = s.Kin(op.body1);
-  const BodyKinematics& b2 = s.Kin(op.body2);
-  Vec3 uk[5], wk[5], ak[5];
-  for (int k = 0; k <= order; ++k) {
-    uk[k] = b1.VectorDerivative(op.vector1, k);
-    wk[k] = b2.VectorDerivative(op.vector2, k);
-    ak[k] = b1.VectorDerivative(op.about, k);
-  }
-  const auto u = VecJet(uk, order), w = VecJet(wk, order), a = VecJet(ak, order);
-  const std::array<Jet, 3> c = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-  const Jet dot = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
-  if (op.signed_about) {
-    const Jet y = a[0] * c[0] + a[1] * c[1] + a[2] * c[2];
-    const Jet x = dot - (a[0] * u[0] + a[1] * u[1] + a[2] * u[2]) * (a[0] * w[0] + a[1] * w[1] + a[2] * w[2]);
-    const Jet th = Atan2(y, x);
-    if (order >= 1) angle_rate_[o] = th.Derivative(1);
-    *out++ = JointAngle(s, o, y.c[0], x.c[0]) * ang;
-    for (int k = 1; k <= order; ++k) *out++ = th.Derivative(k) * ang;
-    return out;
-  }
-  const double cross = std::sqrt(c[0].c[0] * c[0].c[0] + c[1].c[0] * c[1].c[0] + c[2].c[0] * c[2].c[0]);
-  *out++ = std::atan2(cross, dot.c[0]) * ang;
-  if (order == 0) return out;
+  double y = 0, x = 0;
   try {
-    const Jet th = Atan2(Sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), dot);
+    const Jet th = AngleJet(s, op, order, &y, &x);
+    if (op.signed_about && order >= 1) angle_rate_[o] = th.Derivative(1);
+    *out++ = (op.signed_about ? JointAngle(s, o, y, x) : std::atan2(y, x)) * ang;
     for (int k = 1; k <= order; ++k) *out++ = th.Derivative(k) * ang;
   } catch (const JetDomainError&) {
+    *out++ = std::atan2(y, x) * ang;
     for (int k = 1; k <= order; ++k) *out++ = std::nan("");
   }
   return out;
@@ -467,24 +486,24 @@ double* RowEvaluator::PointValues(const SystemState& s, int o, double* out) cons
 Jet RowEvaluator::ScalarOutputJet(const SystemState& s, int o) const {
   const int order = layout_.options().order;
   const Output& op = model_.outputs[o];
-  const BodyKinematics& b1 = s.Kin(op.body1);
-  const BodyKinematics& b2 = s.Kin(op.body2);
+  if (op.kind == OutputKind::Distance) return DistanceJet(s, op, order);
+  if (op.kind == OutputKind::Angle) {
+    double y, x;
+    try {
+      return AngleJet(s, op, order, &y, &x);
+    } catch (const JetDomainError&) {
+      Jet nan;
+      for (auto& c : nan.c) c = std::nan("");
+      return nan;
+    }
+  }
+  const Joint& jt = model_.joints[op.joint];
+  if (jt.type == JointType::Prismatic) return SlideJet(s, jt, order);
+  // Revolute: θ^(k) = h'_jᵀω_j'^(k−1) − h'_iᵀω_i'^(k−1).
   static constexpr double kInvFact[] = {1, 1, 0.5, 1.0 / 6, 1.0 / 24};
   Jet j;
-  if (op.kind == OutputKind::JointCoordinate && model_.joints[op.joint].type == JointType::Revolute) {
-    const Joint& jt = model_.joints[op.joint];
-    for (int k = 1; k <= order; ++k) j.c[k] = (jt.frame2.h.dot(b2.w[k - 1]) - jt.frame1.h.dot(b1.w[k - 1])) * kInvFact[k];
-    return j;
-  }
-  // Prismatic slide, distance and angle: the value columns' own jets, recomputed.
-  std::vector<double> tmp(3 * (order + 1) + 1);
-  RowEvaluator* self = const_cast<RowEvaluator*>(this);
-  const double keep_ref = angle_ref_[o], keep_rate = angle_rate_[o];
-  const double factor = op.kind == OutputKind::Angle ? layout_.angle_factor() : layout_.length_factor();
-  if (op.kind == OutputKind::Angle) self->AngleValues(s, o, tmp.data());
-  else self->OutputValues(s, o, tmp.data());
-  self->angle_ref_[o] = keep_ref, self->angle_rate_[o] = keep_rate;
-  for (int k = 0; k <= order; ++k) j.c[k] = tmp[k] / factor * kInvFact[k];
+  for (int k = 1; k <= order; ++k)
+    j.c[k] = (jt.frame2.h.dot(s.Kin(jt.body2).w[k - 1]) - jt.frame1.h.dot(s.Kin(jt.body1).w[k - 1])) * kInvFact[k];
   return j;
 }
 
