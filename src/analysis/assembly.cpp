@@ -109,8 +109,6 @@ namespace {
 
 constexpr int kMaxContinuationSteps = 1000;
 
-bool IsAngle(const Driver& d) { return d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation; }
-
 // Number of continuation increments: at most 10° per rotation driver and 5 % of
 // the characteristic length per translation or distance driver. Computed in
 // floating point and capped, so a far start never overflows an int.
@@ -118,7 +116,7 @@ double ContinuationSteps(const Model& model, const std::vector<double>& from, co
   double worst = 0;
   for (size_t d = 0; d < model.drivers.size(); ++d)
     worst = std::max(worst, std::abs(to[d] - from[d]) /
-                                (IsAngle(model.drivers[d]) ? 10 * M_PI / 180 : 0.05 * model.characteristic_length));
+                                (IsAngleDriver(model.drivers[d]) ? 10 * M_PI / 180 : 0.05 * model.characteristic_length));
   return std::max(1.0, std::ceil(worst));
 }
 
@@ -132,7 +130,7 @@ std::vector<double> ContinuationTargets(const Model& model, const std::vector<do
   for (const Joint& j : model.joints)
     if (j.type == JointType::Screw) return to;
   for (size_t d = 0; d < model.drivers.size(); ++d)
-    if (IsAngle(model.drivers[d])) to[d] = from[d] + std::remainder(to[d] - from[d], 2 * M_PI);
+    if (IsAngleDriver(model.drivers[d])) to[d] = from[d] + std::remainder(to[d] - from[d], 2 * M_PI);
   return to;
 }
 

@@ -34,10 +34,6 @@ bool IsAngleOutput(const Model& model, int output) {
          (x.kind == OutputKind::JointCoordinate && model.joints[x.joint].type == JointType::Revolute);
 }
 
-bool IsRotationDriver(const Driver& d) {
-  return d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation;
-}
-
 // d = P2 − P1 of an output's two points: |d| on jets (SI).
 Jet DistanceJet(const SystemState& s, const Output& op, int order) {
   Vec3 d[5];
@@ -205,7 +201,7 @@ void MotionLayout::AddVelocityRatio(const Model& model, int o) {
   const std::string A = options_.si ? "rad" : model.units.angle_name;
   const std::string num = IsAngleOutput(model, out.ratio_of) ? A : L;
   const bool input_angle = out.ratio_input_output >= 0 ? IsAngleOutput(model, out.ratio_input_output)
-                                                       : IsRotationDriver(model.drivers[out.ratio_input_driver]);
+                                                       : IsAngleDriver(model.drivers[out.ratio_input_driver]);
   const std::string den = input_angle ? A : L;
   const std::string unit = num == den ? "" : num + "/" + den;
   for (int k = 0; k <= std::max(options_.order - 1, 0); ++k)
@@ -521,7 +517,7 @@ double* RowEvaluator::VelocityRatioValues(const SystemState& s, int o, double* o
     den_factor = factor(IsAngleOutput(model_, op.ratio_input_output));
   } else {
     den = s.driver_values[op.ratio_input_driver];
-    den_factor = factor(IsRotationDriver(model_.drivers[op.ratio_input_driver]));
+    den_factor = factor(IsAngleDriver(model_.drivers[op.ratio_input_driver]));
   }
   Jet p, q;  // the derivative series, to order − 1
   for (int k = 0; k < order; ++k) p.c[k] = (k + 1) * num.c[k + 1], q.c[k] = (k + 1) * den.c[k + 1];

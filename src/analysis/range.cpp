@@ -4,23 +4,12 @@
 #include <cmath>
 #include <memory>
 
+#include "analysis/assembly.hpp"
 #include "analysis/motion.hpp"
 
 namespace mechkin {
 
 namespace {
-
-bool IsAngle(const Driver& d) { return d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation; }
-
-// A driver's value at the design pose (SI): 0 for joint, body and coordinate
-// drivers, the design distance for a distance driver.
-double DesignValue(const Model& m, const Driver& d) {
-  if (d.kind != DriverKind::Distance) return 0;
-  auto global = [&](BodyIndex b, const Vec3& s) {
-    return b == kGround ? s : Vec3(m.bodies[b].position + CalcA(m.bodies[b].euler) * s);
-  };
-  return (global(d.body2, d.point2) - global(d.body1, d.point1)).norm();
-}
 
 TimeFunction Linear(double offset, double slope) {
   char text[96];
@@ -32,7 +21,7 @@ TimeFunction Linear(double offset, double slope) {
 RangeEnd Sweep(const Model& model, int d, double sign, double span, const RangeOptions& options, DriverRange* out) {
   Model m = model;
   for (size_t k = 0; k < m.drivers.size(); ++k)
-    m.drivers[k].function = Linear(DesignValue(model, model.drivers[k]), k == static_cast<size_t>(d) ? sign * span : 0);
+    m.drivers[k].function = Linear(DesignDriverValue(model, model.drivers[k]), k == static_cast<size_t>(d) ? sign * span : 0);
   m.analysis = Analysis{0, 1, options.steps};
   AnalysisOptions a;
   a.order = 1;
@@ -42,14 +31,14 @@ RangeEnd Sweep(const Model& model, int d, double sign, double span, const RangeO
   table.order = 1;
   table.all_outputs = false;
   const Motion motion = RunMotion(m, a, table);
-  const double to_file = 1 / (IsAngle(model.drivers[d]) ? model.units.angle_to_si : model.units.length_to_si);
-  const double v0 = DesignValue(model, model.drivers[d]);
+  const double to_file = 1 / (IsAngleDriver(model.drivers[d]) ? model.units.angle_to_si : model.units.length_to_si);
+  const double v0 = DesignDriverValue(model, model.drivers[d]);
   for (const auto& st : motion.report.steps)
     if (st.condition > out->max_condition)
       out->max_condition = st.condition, out->value_at_max_condition = (v0 + sign * span * st.t) * to_file;
   RangeEnd end;
   if (motion.complete) {
-    end.kind = IsAngle(model.drivers[d]) ? "full turn" : "open";
+    end.kind = IsAngleDriver(model.drivers[d]) ? "full turn" : "open";
     end.value = (v0 + sign * span) * to_file;
   } else if (motion.report.limit && motion.report.limit->fold) {
     end.kind = "limit";
@@ -78,9 +67,9 @@ RangeReport CalcRange(const Model& model, const RangeOptions& options) {
     if (!options.driver.empty() && drv.name != options.driver) continue;
     DriverRange r;
     r.driver = drv.name;
-    r.unit = IsAngle(drv) ? model.units.angle_name : model.units.length_name;
-    r.design_value = DesignValue(model, drv) / (IsAngle(drv) ? model.units.angle_to_si : model.units.length_to_si);
-    const double span = IsAngle(drv) ? 2 * M_PI
+    r.unit = IsAngleDriver(drv) ? model.units.angle_name : model.units.length_name;
+    r.design_value = DesignDriverValue(model, drv) / (IsAngleDriver(drv) ? model.units.angle_to_si : model.units.length_to_si);
+    const double span = IsAngleDriver(drv) ? 2 * M_PI
                                      : (options.span > 0 ? options.span * model.units.length_to_si
                                                          : 4 * model.characteristic_length);
     r.upper = Sweep(model, static_cast<int>(d), 1, span, options, &r);

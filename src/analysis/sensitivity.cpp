@@ -130,15 +130,15 @@ void SensitivitySolver::SolveOrder(KinematicsWorkspace& ws, const SystemState& s
     PerturbedState(s, v, k - 1, side == &v.plus ? 1.0 : -1.0, *side);
     Eigen::VectorXd& residual = side == &v.plus ? plus_ : minus_;
     if (k == 0) {
-      CalcPhi(*side->sys, *side->state, &rhs_);
+      CalcPhi(*side->sys, *side->state, &full_);
       residual.resize(rows_.size());
-      for (size_t r = 0; r < rows_.size(); ++r) residual[r] = rhs_[rows_[r]];
+      for (size_t r = 0; r < rows_.size(); ++r) residual[r] = full_[rows_[r]];
       continue;
     }
     side->jac->Fill(*side->sys, *side->state);
-    CalcRhs(*side->sys, *side->state, k, Formulation::Omega, &rhs_);
+    CalcRhs(*side->sys, *side->state, k, Formulation::Omega, &full_);
     residual = side->jac->matrix() * x_;
-    for (size_t r = 0; r < rows_.size(); ++r) residual[r] -= rhs_[rows_[r]];
+    for (size_t r = 0; r < rows_.size(); ++r) residual[r] -= full_[rows_[r]];
   }
   rhs_ = (minus_ - plus_) / (2 * v.h);
   if (!ws.factorization().SolveLinear(rhs_, &dx_)) throw std::runtime_error("sensitivity: no solve");

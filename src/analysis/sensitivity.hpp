@@ -55,7 +55,8 @@ class SensitivitySolver {
   int order_;
   std::vector<std::unique_ptr<Variant>> variants_;
   std::vector<int> rows_;  // the active rows the Jacobians were built for
-  Eigen::VectorXd plus_, minus_, rhs_, x_, dx_;
+  // full_: all rows (Φ, RHS_k); the others the active rows, so no buffer changes size per order.
+  Eigen::VectorXd full_, plus_, minus_, rhs_, x_, dx_;
 };
 
 /// The finite-difference step of a parameter: 5e-6 of its scale (its value, else

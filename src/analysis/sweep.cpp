@@ -121,12 +121,11 @@ std::vector<std::string> SweepColumns(const Model& model, int order) {
 VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, const SweepOptions& options) {
   VariantSummary v;
   for (const auto& kv : values) v.values.push_back(kv.second);
-  const size_t columns = SweepColumns(model, options.order).size();
   LoadResult compiled = WithParameters(model, values);
   if (!compiled.ok()) {
     v.status = "invalid";
     v.message = compiled.errors.empty() ? "the file does not compile" : compiled.errors.front().ToString();
-    v.min.assign(columns, std::numeric_limits<double>::quiet_NaN());
+    v.min.assign(SweepColumns(model, options.order).size(), std::numeric_limits<double>::quiet_NaN());
     v.max = v.min;
     return v;
   }
@@ -137,8 +136,7 @@ VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, 
   v.message = m.complete ? "" : m.stop.Summary();
   v.rows = m.rows();
   if (!m.complete && m.rows() > 0) v.t_stop = m.at(m.rows() - 1, 0);
-  Summarize(m, &v);
-  if (v.min.size() != columns) v.min.assign(columns, std::numeric_limits<double>::quiet_NaN()), v.max = v.min;
+  Summarize(m, &v);  // the variant's layout has the base model's columns: same file
   return v;
 }
 

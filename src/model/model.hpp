@@ -161,6 +161,11 @@ struct Model {
   std::string BodyName(BodyIndex b) const { return b == kGround ? "ground" : bodies[b].name; }
 };
 
+/// A driver whose value is an angle (rotation of a joint, of a body, or between bodies).
+inline bool IsAngleDriver(const Driver& d) {
+  return d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation;
+}
+
 /// Number of equations a joint removes (format-v1 joint table).
 int EquationsRemoved(JointType type);
 /// Lower-case name as in the file ("revolute", ...).

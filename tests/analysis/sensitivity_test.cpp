@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "analysis/motion.hpp"
@@ -64,6 +65,10 @@ double WorstMismatch(const std::string& file, const std::string& parameter, doub
     }
   }
   EXPECT_GT(compared, 100);
+  // The README's figure: --gtest_output=xml shows worst_<parameter> per test.
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", worst);
+  ::testing::Test::RecordProperty("worst_" + parameter, text);
   return worst;
 }
 

@@ -46,12 +46,15 @@ TEST(Tolerance, OffsetAloneMovesThePistonLine) {
   ASSERT_TRUE(r.ok());
   const ToleranceReport rep = AnalyzeTolerances(*r.model, ToleranceOptions{});
   ASSERT_TRUE(rep.ok);
+  int found = 0;
   for (const auto& c : rep.columns)
     if (c.name == "piston.y") {
+      ++found;
       EXPECT_NEAR(c.max_worst_case, 0.1, 1e-9);
       EXPECT_EQ(c.contributions.front().first, "offset");
       EXPECT_NEAR(c.contributions[1].second, 0, 1e-9);
     }
+  EXPECT_EQ(found, 1);
 }
 
 TEST(Tolerance, FileWithoutTolerancesIsExplained) {
