@@ -15,12 +15,25 @@ void CalcErrorBounds(double condition, double residual, int max_order, double* b
   }
 }
 
-double ResidualForAccuracy(double tolerance, double condition, int order) {
-  // No residual below the round-off floor 16u is reachable; asking for one would
-  // only spend iterations that cannot halve it.
-  const double floor = 16 * std::numeric_limits<double>::epsilon() / 2;
+namespace {
+
+// No residual below the round-off floor 16u is reachable in double; asking for one
+// would only spend iterations that cannot halve it.
+constexpr double kResidualFloor = 16 * std::numeric_limits<double>::epsilon() / 2;
+
+double UnclampedResidual(double tolerance, double condition, int order) {
   const double k = std::max(condition, 1.0);
-  return std::max(floor, order >= 1 ? tolerance / (k * k) : tolerance / k);
+  return order >= 1 ? tolerance / (k * k) : tolerance / k;
+}
+
+}  // namespace
+
+double ResidualForAccuracy(double tolerance, double condition, int order) {
+  return std::max(kResidualFloor, UnclampedResidual(tolerance, condition, order));
+}
+
+bool NeedsExtendedResidual(double tolerance, double condition, int order) {
+  return UnclampedResidual(tolerance, condition, order) < kResidualFloor;
 }
 
 }  // namespace mechkin

@@ -17,4 +17,8 @@ void CalcErrorBounds(double condition, double residual, int max_order, double* b
 /// the answer, not only on the residual (issue "Right at every order", item 2).
 double ResidualForAccuracy(double tolerance, double condition, int order);
 
+/// True when that residual lies below the double round-off floor, so that only an
+/// extended-precision residual (NewtonSolver's accuracy phase) can deliver it.
+bool NeedsExtendedResidual(double tolerance, double condition, int order);
+
 }  // namespace mechkin

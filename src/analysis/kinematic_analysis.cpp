@@ -132,9 +132,11 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
   // (error_bounds.hpp). Not in the sub-steps that bracket a singular position
   // (Refine), where the pose must follow the plain continuation the bisection expects,
   // nor where no residual would do (κ ≥ 1e4).
-  solve_.target = polish && last_condition_ < kMaxPolishCondition
-                      ? ResidualForAccuracy(options_.tolerance, last_condition_, options_.order)
-                      : 0;
+  const bool accuracy_phase = polish && last_condition_ < kMaxPolishCondition;
+  solve_.target = accuracy_phase ? ResidualForAccuracy(options_.tolerance, last_condition_, options_.order) : 0;
+  // Below double round-off the residual is evaluated in extended precision.
+  solve_.extended_precision =
+      accuracy_phase && NeedsExtendedResidual(options_.tolerance, last_condition_, options_.order);
   last_ = SolvePosition(*ws_, solve_, &s_, reuse && options_.modified_newton);
   if (!last_.success) return Outcome::Failed;
   const double sign = ws_->factorization().Sign();

@@ -38,6 +38,10 @@ struct BodyKinematics {
   void PrepareOrder(int k);
   void CompleteOrder(int k);
 
+  /// The global point r + A s' and vector A a' (the pose interface Φ reads; ExtendedPose
+  /// has the same two in extended precision).
+  Vec3 Point(const Vec3& s) const { return r[0] + A * s; }
+  Vec3 Vector(const Vec3& a) const { return A * a; }
   /// k-th derivative of the global point r + A s' (k = 0: the point itself).
   Vec3 PointDerivative(const Vec3& s, int k) const { return (k == 0 ? r[0] + A * s : Vec3(r[k] + AD[k] * s)); }
   /// Part of the k-th derivative of r + A s' that does not hold r^(k) or ω'^(k−1).

@@ -21,10 +21,5 @@ void CalcPVersionRhs(const Constraint& c, const ConstraintInput& in, int k, doub
   for (int row = 0; row < c.size(); ++row) rhs[row] -= J.pi_i.row(row).dot(vi) + J.pi_j.row(row).dot(vj);
 }
 
-double UnwrapAngle(double s, double c, double ref) {
-  const double raw = std::atan2(s, c);
-  const double turns = std::round((ref - raw) / (2 * M_PI));
-  return raw + 2 * M_PI * turns;
-}
 
 }  // namespace mechkin

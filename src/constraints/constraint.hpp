@@ -42,6 +42,34 @@ struct ConstraintInput {
   double angle_ref = 0;  // unwrapping reference for multi-turn angles (rad)
 };
 
+/// Extended precision (x87 long double: 64-bit significand, 11 bits more than double)
+/// for the accuracy phase of the position solve: near a dead centre the answer's
+/// derivatives amplify the position error by κ per order, and a residual evaluated in
+/// double cannot place the pose closer than round-off of the coordinates allows.
+using Real = long double;
+using Vec3R = Eigen::Matrix<Real, 3, 1>;
+using Vec4R = Eigen::Matrix<Real, 4, 1>;
+using Mat3R = Eigen::Matrix<Real, 3, 3>;
+
+/// A body pose in extended precision: what Φ reads (r, A), nothing of the rates.
+struct ExtendedPose {
+  Vec3R r = Vec3R::Zero();
+  Vec4R p = Vec4R(1, 0, 0, 0);
+  Mat3R A = Mat3R::Identity();
+
+  static ExtendedPose Of(const BodyKinematics& b) { return {b.r[0].cast<Real>(), b.p.cast<Real>(), b.A.cast<Real>()}; }
+  Vec3R Point(const Vec3& s) const { return r + A * s.cast<Real>(); }
+  Vec3R Vector(const Vec3& a) const { return A * a.cast<Real>(); }
+};
+
+/// What a family's Φ reads in extended precision.
+struct ExtendedInput {
+  const ExtendedPose& i;
+  const ExtendedPose& j;
+  Real f = 0;             // driver function value (SI); zero for joints
+  double angle_ref = 0;   // as in ConstraintInput
+};
+
 class Constraint {
  public:
   Constraint(BodyIndex body_i, BodyIndex body_j, int size) : body_i_(body_i), body_j_(body_j), size_(size) {}
@@ -52,6 +80,8 @@ class Constraint {
   BodyIndex body_j() const { return body_j_; }
 
   virtual void CalcPhi(const ConstraintInput& in, double* phi) const = 0;
+  /// The same Φ in extended precision (the families share one template for both).
+  virtual void CalcPhiExtended(const ExtendedInput& in, Real* phi) const = 0;
   virtual void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const = 0;
   /// RHS_k, ω' version, k = 1..4. Kinematics of orders < k must be set in `in`.
   virtual void CalcRhs(const ConstraintInput& in, int k, double* rhs) const = 0;
@@ -88,6 +118,13 @@ inline Vec3 RelativePointDerivative(const ConstraintInput& in, const Vec3& s_i, 
 }
 
 /// Continuous angle: atan2(s, c) shifted by whole turns to lie within π of `ref`.
-double UnwrapAngle(double s, double c, double ref);
+template <typename S>
+S UnwrapAngle(S s, S c, double ref) {
+  using std::atan2, std::round;
+  const S two_pi = 2 * S(3.141592653589793238462643383279502884L);
+  const S raw = atan2(s, c);
+  const S turns = round((S(ref) - raw) / two_pi);
+  return raw + two_pi * turns;
+}
 
 }  // namespace mechkin

@@ -3,10 +3,6 @@
 #include "constraints/families.hpp"
 
 namespace mechkin {
-void DistanceConstraint::CalcPhi(const ConstraintInput& in, double* phi) const {
-  const double L = driven() ? in.f.c[0] : length_;
-  *phi = RelativePointDerivative(in, s_i_, s_j_, 0).squaredNorm() - L * L;
-}
 
 // Φ_r = [−2dᵀ, 2dᵀ], Φ_π' = [2dᵀA_i s̃'_i, −2dᵀA_j s̃'_j]   (§3.2 table; §3.7: same for 3DRDD)
 void DistanceConstraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const {

@@ -3,10 +3,6 @@
 
 namespace mechkin {
 
-void Dot1Constraint::CalcPhi(const ConstraintInput& in, double* phi) const {
-  *phi = (in.i.A * a_i_).dot(in.j.A * a_j_);
-}
-
 // Φ_π' = [−a_jᵀA_i ã'_i, −a_iᵀA_j ã'_j], Φ_r = 0   (§3.3 table)
 void Dot1Constraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const {
   const Vec3 ai = in.i.A * a_i_, aj = in.j.A * a_j_;

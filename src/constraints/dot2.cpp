@@ -2,9 +2,6 @@
 #include "constraints/families.hpp"
 
 namespace mechkin {
-void Dot2Constraint::CalcPhi(const ConstraintInput& in, double* phi) const {
-  *phi = (in.i.A * a_i_).dot(RelativePointDerivative(in, s_i_, s_j_, 0));
-}
 
 // Φ_r = [−a_iᵀ, a_iᵀ], Φ_π'_i = a'_iᵀ s̃'_i − dᵀA_i ã'_i, Φ_π'_j = −a_iᵀA_j s̃'_j   (§3.4 table)
 void Dot2Constraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const {

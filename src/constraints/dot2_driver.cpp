@@ -4,11 +4,6 @@
 
 namespace mechkin {
 
-void Dot2DistanceDriver::CalcPhi(const ConstraintInput& in, double* phi) const {
-  dot2_.CalcPhi(in, phi);
-  *phi = *phi / dot2_.length() - in.f.c[0];
-}
-
 void Dot2DistanceDriver::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const {
   dot2_.CalcJacobian(in, J);
   const double L = dot2_.length();

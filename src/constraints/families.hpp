@@ -22,12 +22,20 @@ class SphericalConstraint : public Constraint {
  public:
   SphericalConstraint(BodyIndex i, BodyIndex j, const Vec3& s_i, const Vec3& s_j)
       : Constraint(i, j, 3), s_i_(s_i), s_j_(s_j) {}
-  void CalcPhi(const ConstraintInput& in, double* phi) const override;
+  void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
+  void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
   const char* family() const override { return "SPH"; }
   int LengthPower() const override { return 1; }
+
+  /// Φ on any pose type (BodyKinematics or ExtendedPose): S = double or Real.
+  template <class Pose, typename S>
+  void Phi(const Pose& i, const Pose& j, S, double, S* phi) const {
+    const Eigen::Matrix<S, 3, 1> d = j.Point(s_j_) - i.Point(s_i_);
+    for (int k = 0; k < 3; ++k) phi[k] = d[k];
+  }
 
  private:
   Vec3 s_i_, s_j_;
@@ -39,7 +47,8 @@ class DistanceConstraint : public Constraint {
   /// length > 0: fixed link (SPH_SPH); length == 0: driven by f(t) (3DRDD).
   DistanceConstraint(BodyIndex i, BodyIndex j, const Vec3& s_i, const Vec3& s_j, double length)
       : Constraint(i, j, 1), s_i_(s_i), s_j_(s_j), length_(length) {}
-  void CalcPhi(const ConstraintInput& in, double* phi) const override;
+  void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
+  void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
@@ -49,6 +58,12 @@ class DistanceConstraint : public Constraint {
   double Misfit(const ConstraintInput& in, int, double phi) const override {
     const double L = driven() ? in.f.c[0] : length_;
     return std::sqrt(std::max(phi + L * L, 0.0)) - L;  // |d| − L
+  }
+
+  template <class Pose, typename S>
+  void Phi(const Pose& i, const Pose& j, S f, double, S* phi) const {
+    const S L = driven() ? f : S(length_);
+    *phi = (j.Point(s_j_) - i.Point(s_i_)).squaredNorm() - L * L;
   }
 
  private:
@@ -61,12 +76,18 @@ class Dot1Constraint : public Constraint {
  public:
   Dot1Constraint(BodyIndex i, BodyIndex j, const Vec3& a_i, const Vec3& a_j)
       : Constraint(i, j, 1), a_i_(a_i), a_j_(a_j) {}
-  void CalcPhi(const ConstraintInput& in, double* phi) const override;
+  void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
+  void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
   const char* family() const override { return "DOT_1"; }
   int LengthPower() const override { return 0; }
+
+  template <class Pose, typename S>
+  void Phi(const Pose& i, const Pose& j, S, double, S* phi) const {
+    *phi = i.Vector(a_i_).dot(j.Vector(a_j_));
+  }
 
  private:
   Vec3 a_i_, a_j_;
@@ -78,13 +99,19 @@ class Dot2Constraint : public Constraint {
  public:
   Dot2Constraint(BodyIndex i, BodyIndex j, const Vec3& a_i, const Vec3& s_i, const Vec3& s_j)
       : Constraint(i, j, 1), a_i_(a_i), s_i_(s_i), s_j_(s_j) {}
-  void CalcPhi(const ConstraintInput& in, double* phi) const override;
+  void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
+  void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
   const char* family() const override { return "DOT_2"; }
   int LengthPower() const override { return 1; }
   double length() const { return a_i_.norm(); }
+
+  template <class Pose, typename S>
+  void Phi(const Pose& i, const Pose& j, S, double, S* phi) const {
+    *phi = i.Vector(a_i_).dot(j.Point(s_j_) - i.Point(s_i_));
+  }
 
  private:
   Vec3 a_i_, s_i_, s_j_;
@@ -95,12 +122,19 @@ class Dot2DistanceDriver : public Constraint {
  public:
   Dot2DistanceDriver(BodyIndex i, BodyIndex j, const Vec3& a_i, const Vec3& s_i, const Vec3& s_j)
       : Constraint(i, j, 1), dot2_(i, j, a_i, s_i, s_j) {}
-  void CalcPhi(const ConstraintInput& in, double* phi) const override;
+  void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
+  void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
   const char* family() const override { return "D2DD"; }
   int LengthPower() const override { return 1; }
+
+  template <class Pose, typename S>
+  void Phi(const Pose& i, const Pose& j, S f, double ref, S* phi) const {
+    dot2_.Phi(i, j, f, ref, phi);
+    *phi = *phi / S(dot2_.length()) - f;
+  }
 
  private:
   Dot2Constraint dot2_;
@@ -113,7 +147,8 @@ class RotationDriver : public Constraint {
  public:
   RotationDriver(BodyIndex i, BodyIndex j, const JointFrame& frame_i, const JointFrame& frame_j)
       : Constraint(i, j, 1), fi_(frame_i.f), gi_(frame_i.g), fj_(frame_j.f), hi_(frame_i.h), hj_(frame_j.h) {}
-  void CalcPhi(const ConstraintInput& in, double* phi) const override;
+  void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
+  void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
@@ -123,6 +158,17 @@ class RotationDriver : public Constraint {
   int LengthPower() const override { return 0; }
   /// Exact gradient of θ (§3.9): rows for π'_i and π'_j.
   void CalcAngleGradient(const ConstraintInput& in, Vec3* d_pi_i, Vec3* d_pi_j) const;
+
+  /// θ_ij on any pose type, continued over whole turns from `ref`.
+  template <class Pose>
+  auto Angle(const Pose& i, const Pose& j, double ref) const {
+    const auto fj = j.Vector(fj_);
+    return UnwrapAngle(i.Vector(gi_).dot(fj), i.Vector(fi_).dot(fj), ref);
+  }
+  template <class Pose, typename S>
+  void Phi(const Pose& i, const Pose& j, S f, double ref, S* phi) const {
+    *phi = Angle(i, j, ref) - f;
+  }
 
  protected:
   Vec3 fi_, gi_, fj_, hi_, hj_;
@@ -148,7 +194,8 @@ class ScrewConstraint : public Constraint {
         dot2_(i, j, frame_i.h, frame_i.origin, frame_j.origin),
         angle_(i, j, frame_i, frame_j),
         lambda_s_(pitch / (2 * M_PI)) {}
-  void CalcPhi(const ConstraintInput& in, double* phi) const override;
+  void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
+  void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
@@ -156,6 +203,12 @@ class ScrewConstraint : public Constraint {
   bool HasAngle() const override { return true; }
   const char* family() const override { return "SDA"; }
   int LengthPower() const override { return 1; }
+
+  template <class Pose, typename S>
+  void Phi(const Pose& i, const Pose& j, S f, double ref, S* phi) const {
+    dot2_.Phi(i, j, f, ref, phi);
+    *phi -= S(lambda_s_) * angle_.Angle(i, j, ref);
+  }
 
  private:
   Dot2Constraint dot2_;

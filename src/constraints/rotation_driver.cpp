@@ -6,14 +6,7 @@
 
 namespace mechkin {
 
-double RotationDriver::CalcAngle(const ConstraintInput& in) const {
-  const Vec3 fj = in.j.A * fj_;
-  return UnwrapAngle((in.i.A * gi_).dot(fj), (in.i.A * fi_).dot(fj), in.angle_ref);
-}
-
-void RotationDriver::CalcPhi(const ConstraintInput& in, double* phi) const {
-  *phi = CalcAngle(in) - in.f.c[0];
-}
+double RotationDriver::CalcAngle(const ConstraintInput& in) const { return Angle(in.i, in.j, in.angle_ref); }
 
 // Exact gradient (§3.9): with c = f_iᵀf_j, s = g_iᵀf_j, ρ² = c² + s²,
 //   Φ_π'_i = f_jᵀA_i(s f̃'_i − c g̃'_i)/ρ²,  Φ_π'_j = (s f_i − c g_i)ᵀA_j f̃'_j/ρ².

@@ -3,11 +3,6 @@
 
 namespace mechkin {
 
-void ScrewConstraint::CalcPhi(const ConstraintInput& in, double* phi) const {
-  dot2_.CalcPhi(in, phi);
-  *phi -= lambda_s_ * angle_.CalcAngle(in);
-}
-
 // Φ_π'_i = Φ_π'_i^DOT_2 − λ_s ∂θ/∂π'_i (= … + λ_s h'_iᵀ on the manifold), likewise for j   (§3.10)
 void ScrewConstraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const {
   dot2_.CalcJacobian(in, J);

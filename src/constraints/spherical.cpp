@@ -3,11 +3,6 @@
 
 namespace mechkin {
 
-void SphericalConstraint::CalcPhi(const ConstraintInput& in, double* phi) const {
-  Eigen::Map<Vec3> out(phi);
-  out = in.j.PointDerivative(s_j_, 0) - in.i.PointDerivative(s_i_, 0);
-}
-
 // Φ_r = [−I, I], Φ_π' = [A_i s̃'_i, −A_j s̃'_j]   (§3.1 table)
 void SphericalConstraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const {
   J->r_i = -Mat3::Identity();

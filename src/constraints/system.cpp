@@ -157,6 +157,26 @@ void CalcPhi(const ConstraintSystem& sys, const SystemState& s, Eigen::VectorXd*
   }
 }
 
+void EvalDriverValuesExtended(const Model& model, double t, std::vector<Real>* values) {
+  values->resize(model.drivers.size());
+  for (size_t k = 0; k < model.drivers.size(); ++k) (*values)[k] = model.drivers[k].function.ValueExtended(t);
+}
+
+void CalcPhiExtended(const ConstraintSystem& sys, const std::vector<ExtendedPose>& poses,
+                     const std::vector<Real>& driver_values, const std::vector<double>& angle_ref,
+                     Eigen::Matrix<Real, Eigen::Dynamic, 1>* phi) {
+  static const ExtendedPose kGroundPose;
+  phi->resize(sys.num_rows());
+  const auto pose = [&](BodyIndex b) -> const ExtendedPose& { return b == kGround ? kGroundPose : poses[b]; };
+  const auto& entries = sys.entries();
+  for (size_t e = 0; e < entries.size(); ++e) {
+    const Constraint& c = *entries[e].constraint;
+    const ExtendedInput in{pose(c.body_i()), pose(c.body_j()),
+                           entries[e].from_driver ? driver_values[entries[e].source] : Real(0), angle_ref[e]};
+    c.CalcPhiExtended(in, phi->data() + entries[e].first_row);
+  }
+}
+
 void CalcJacobianDense(const ConstraintSystem& sys, const SystemState& s, Formulation f, Eigen::MatrixXd* J) {
   const int n = sys.num_bodies(), m = sys.num_rows();
   const int nc = f == Formulation::Omega ? 6 : 7;

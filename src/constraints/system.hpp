@@ -82,6 +82,13 @@ void CalcPhi(const ConstraintSystem& sys, const SystemState& s, Eigen::VectorXd*
 void CalcJacobianDense(const ConstraintSystem& sys, const SystemState& s, Formulation f, Eigen::MatrixXd* J);
 /// RHS_k (k = 1..4): ω' version num_rows; p version num_rows + n (EUL rows last).
 void CalcRhs(const ConstraintSystem& sys, const SystemState& s, int k, Formulation f, Eigen::VectorXd* rhs);
+/// Every driver function's value at t in extended precision (per model driver, SI).
+void EvalDriverValuesExtended(const Model& model, double t, std::vector<Real>* values);
+/// Φ (num_rows) in extended precision at per-body poses, with extended driver values
+/// and the state's angle references.
+void CalcPhiExtended(const ConstraintSystem& sys, const std::vector<ExtendedPose>& poses,
+                     const std::vector<Real>& driver_values, const std::vector<double>& angle_ref,
+                     Eigen::Matrix<Real, Eigen::Dynamic, 1>* phi);
 /// Updates the multi-turn angle references to the current angles (after a step is accepted).
 void UpdateAngleReferences(const ConstraintSystem& sys, SystemState* s);
 

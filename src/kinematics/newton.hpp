@@ -52,6 +52,8 @@ class NewtonSolver : public Factorization {
 
  private:
   void RefineToTarget(const SolveOptions& options, SystemState* s, SolveSummary* sum);
+  void RefineExtended(SystemState* s, SolveSummary* sum);
+  Real ExtendedResidual();
 
   const ConstraintSystem& sys_;
   std::vector<int> rows_;
@@ -64,6 +66,10 @@ class NewtonSolver : public Factorization {
   bool factorized_ = false;
   Eigen::VectorXd phi_, rhs_, dq_, cond_x_, cond_y_, cond_b_;
   Eigen::VectorXd col_scales_;  // L for translation columns, 1 for rotation (dimensionless κ)
+  // Extended-precision accuracy phase: poses, driver values and Φ, sized once.
+  std::vector<ExtendedPose> ext_poses_;
+  std::vector<Real> ext_drivers_;
+  Eigen::Matrix<Real, Eigen::Dynamic, 1> ext_phi_;
 
 };
 

@@ -22,6 +22,10 @@ struct SolveOptions {
   // Full-system Newton only: after meeting `tolerance`, up to two more iterations
   // with the factorization held toward this residual (never a failure); 0 = none.
   double target = 0;
+  // Full-system Newton only: then refine in extended precision (Φ and the pose in
+  // long double, corrections back-solved with the double factorization), for rows
+  // whose derivatives need a residual below double round-off (error_bounds.hpp).
+  bool extended_precision = false;
 };
 
 struct SolveSummary {

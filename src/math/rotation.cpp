@@ -20,12 +20,6 @@ Mat34 CalcE(const Vec4& p) {
   return E;
 }
 
-Mat3 CalcA(const Vec4& p) {
-  const double e0 = p[0];
-  const Vec3 e = p.tail<3>();
-  return (2 * e0 * e0 - 1) * Mat3::Identity() + 2 * (e * e.transpose() + e0 * Tilde(e));
-}
-
 Vec4 QuatMultiply(const Vec4& a, const Vec4& b) {
   Vec4 c;
   c[0] = a[0] * b[0] - a.tail<3>().dot(b.tail<3>());
@@ -61,18 +55,6 @@ Vec4 QuatFromMatrix(const Mat3& R) {
   }
   if (q[0] < 0) q = -q;  // canonical sign: e0 >= 0
   return q.normalized();
-}
-
-Vec4 QuatRetractBody(const Vec4& p, const Vec3& delta_pi) {
-  const double angle = delta_pi.norm();
-  Vec4 dq;
-  if (angle < 1e-300) {
-    dq << 1, 0, 0, 0;
-  } else {
-    dq[0] = std::cos(angle / 2);
-    dq.tail<3>() = (std::sin(angle / 2) / angle) * delta_pi;
-  }
-  return QuatMultiply(p, dq).normalized();
 }
 
 Vec3 AnyPerpendicular(const Vec3& h) {

@@ -226,6 +226,43 @@ Jet Expression::EvalNode(const Node& n, const Jet& t, const std::vector<Jet>& v)
   return Jet{};
 }
 
+long double Expression::ValueExtended(double t) const {
+  thread_local std::vector<long double> value;
+  value.resize(nodes_.size());
+  for (size_t i = 0; i < nodes_.size(); ++i) value[i] = ValueNode(nodes_[i], t, value);
+  return value[root_];
+}
+
+long double Expression::ValueNode(const Node& n, long double t, const std::vector<long double>& v) {
+  switch (n.op) {
+    case Op::Const: return n.value;
+    case Op::Time: return t;
+    case Op::Neg: return -v[n.a];
+    case Op::Add: return v[n.a] + v[n.b];
+    case Op::Sub: return v[n.a] - v[n.b];
+    case Op::Mul: return v[n.a] * v[n.b];
+    case Op::Div: return v[n.a] / v[n.b];
+    case Op::Pow: return std::pow(v[n.a], v[n.b]);
+    case Op::Sin: return std::sin(v[n.a]);
+    case Op::Cos: return std::cos(v[n.a]);
+    case Op::Tan: return std::tan(v[n.a]);
+    case Op::Asin: return std::asin(v[n.a]);
+    case Op::Acos: return std::acos(v[n.a]);
+    case Op::Atan: return std::atan(v[n.a]);
+    case Op::Atan2: return std::atan2(v[n.a], v[n.b]);
+    case Op::Exp: return std::exp(v[n.a]);
+    case Op::Log: return std::log(v[n.a]);
+    case Op::Sqrt: return std::sqrt(v[n.a]);
+  }
+  return 0;
+}
+
+long double TimeFunction::ValueExtended(double t) const {
+  const long double v = table_ ? static_cast<long double>(table_->Eval(t).c[0]) : expr_->ValueExtended(t);
+  if (!std::isfinite(v)) return static_cast<long double>(Eval(t).c[0]);
+  return v * static_cast<long double>(scale_);
+}
+
 Jet TimeFunction::Eval(double t) const {
   Jet j = table_ ? table_->Eval(t) : expr_->Eval(t);
   for (double& c : j.c) c *= scale_;

@@ -40,6 +40,10 @@ class Expression {
   static bool IsReservedName(const std::string& name);
   /// Value and derivatives at t. Throws JetDomainError outside the domain.
   Jet Eval(double t) const;
+  /// The value alone at t in extended precision (long double), for the accuracy phase
+  /// of the position solve. The constants are the parsed doubles; call after Eval
+  /// succeeded at t (no domain checks of its own: a NaN there means "use Eval's").
+  long double ValueExtended(double t) const;
   const std::string& text() const { return text_; }
 
  private:
@@ -47,6 +51,7 @@ class Expression {
                   Atan2, Exp, Log, Sqrt };
   struct Node { Op op; double value = 0; int a = -1, b = -1; };
   static Jet EvalNode(const Node& node, const Jet& t, const std::vector<Jet>& values);
+  static long double ValueNode(const Node& node, long double t, const std::vector<long double>& values);
   friend class ExpressionParser;
   std::string text_;
   std::vector<Node> nodes_;
@@ -89,6 +94,9 @@ class TimeFunction {
   TimeFunction(std::shared_ptr<const TableSpline> s, double scale) : table_(std::move(s)), scale_(scale) {}
   /// Value and derivatives (SI) at t.
   Jet Eval(double t) const;
+  /// The value (SI) at t in extended precision: expressions evaluated in long double,
+  /// tables (double data) as Eval's value. Falls back to Eval's value if not finite.
+  long double ValueExtended(double t) const;
   bool is_table() const { return table_ != nullptr; }
   std::string Describe() const;
 

@@ -1,10 +1,14 @@
 // The tolerance is on the answer, not only on the residual (issue "Right at every
 // order", item 2): a piston-driven slider-crank approaching its dead centre, run
 // with the default settings, against the closed form. Before, the predictor met the
-// residual tolerance and the jerk was 2.5e-5 off by t = 0.995 and 6.5e-4 at 0.998.
+// residual tolerance and the jerk was 2.5e-5 off by t = 0.995 and 6.5e-4 at 0.998;
+// solved in double to round-off it was still 1.6e-5 off at 0.998. Where the
+// derivatives need a residual below double round-off the position solve now ends in
+// extended precision (NewtonSolver::RefineExtended).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "analysis/motion.hpp"
@@ -15,21 +19,34 @@ namespace {
 
 using nlohmann::json;
 
-// Crank a = 20 mm, rod b = 50 mm, no offset; the piston is driven so that the crank
-// angle is θ(t) = θ0·cos(πt/2) exactly: the dead centre θ = 0 at t = 1.
-//   x(θ) = a cos θ + sqrt(b² − a² sin² θ)
-json PistonDrivenSliderCrank(double end, int steps) {
-  const double a = 20, b = 50, th0 = M_PI / 3;
-  const double bx = a * std::cos(th0), by = a * std::sin(th0), cx = bx + std::sqrt(b * b - by * by);
-  char fn[256];
-  std::snprintf(fn, sizeof fn, "%.17g*cos(%.17g*cos(pi*t/2)) + sqrt(%.17g - %.17g*sin(%.17g*cos(pi*t/2))^2) - %.17g", a, th0,
-                b * b, a * a, th0, cx);
-  return {{"mechkin", 1}, {"units", {{"length", "mm"}, {"angle", "deg"}}},
-          {"bodies", {{{"name", "crank"}, {"position", {bx / 2, by / 2, 0}}},
-                      {{"name", "rod"}, {"position", {(bx + cx) / 2, by / 2, 0}}},
+// Crank a, rod b, no offset, crank pin at (bx, by) in the design pose; the piston is
+// driven so that the crank angle is θ(t) = θ0·cos(πt/2) exactly (θ0 = atan2(by, bx)):
+// the dead centre θ = 0 at t = 1.   x(θ) = a cos θ + sqrt(b² − a² sin² θ)
+struct Geometry {
+  const char* unit;
+  double a, b, bx, by;
+};
+
+// The closed form describes the mechanism the file stores only if the file's numbers
+// are the closed form's: crank 34, rod 50, pin (16, 30), slider at 56 (a Pythagorean
+// pair), in units of 1/64 m, so every coordinate, every body-fixed vector and every
+// length is a double exactly, and metres need no conversion.
+constexpr Geometry kExact{"m", 34.0 / 64, 50.0 / 64, 16.0 / 64, 30.0 / 64};
+// Crank 20 mm, rod 50 mm at 60°: the pin (10, 17.32…) and the conversion to metres
+// round every coordinate, which moves the exact answer itself.
+constexpr Geometry kRounded{"mm", 20, 50, 10, 10 * 1.7320508075688772};
+
+json PistonDrivenSliderCrank(const Geometry& g, double end, int steps) {
+  const double th0 = std::atan2(g.by, g.bx), cx = g.bx + std::sqrt(g.b * g.b - g.by * g.by);
+  char fn[320];
+  std::snprintf(fn, sizeof fn, "%.17g*cos(%.17g*cos(pi*t/2)) + sqrt(%.17g - %.17g*sin(%.17g*cos(pi*t/2))^2) - %.17g",
+                g.a, th0, g.b * g.b, g.a * g.a, th0, cx);
+  return {{"mechkin", 1}, {"units", {{"length", g.unit}, {"angle", "deg"}}},
+          {"bodies", {{{"name", "crank"}, {"position", {g.bx / 2, g.by / 2, 0}}},
+                      {{"name", "rod"}, {"position", {(g.bx + cx) / 2, g.by / 2, 0}}},
                       {{"name", "slider"}, {"position", {cx, 0, 0}}}}},
           {"joints", {{{"name", "A"}, {"type", "revolute"}, {"body1", "ground"}, {"body2", "crank"}, {"origin", {0, 0, 0}}, {"axis", {0, 0, 1}}},
-                      {{"name", "B"}, {"type", "revolute"}, {"body1", "crank"}, {"body2", "rod"}, {"origin", {bx, by, 0}}, {"axis", {0, 0, 1}}},
+                      {{"name", "B"}, {"type", "revolute"}, {"body1", "crank"}, {"body2", "rod"}, {"origin", {g.bx, g.by, 0}}, {"axis", {0, 0, 1}}},
                       {{"name", "C"}, {"type", "revolute"}, {"body1", "rod"}, {"body2", "slider"}, {"origin", {cx, 0, 0}}, {"axis", {0, 0, 1}}},
                       {{"name", "P"}, {"type", "prismatic"}, {"body1", "ground"}, {"body2", "slider"}, {"origin", {cx, 0, 0}}, {"axis", {1, 0, 0}}}}},
           {"drivers", {{{"name", "piston"}, {"type", "translation"}, {"joint", "P"}, {"function", fn}}}},
@@ -37,35 +54,64 @@ json PistonDrivenSliderCrank(double end, int steps) {
           {"analysis", {{"start", 0}, {"end", end}, {"steps", steps}}}};
 }
 
-TEST(AccuracyTarget, PistonDrivenSliderCrankNearItsDeadCentre) {
-  const double th0 = M_PI / 3, w = M_PI / 2;
-  TableOptions table;
-  table.si = true;
-  table.order = 3;
-  table.all_bodies = false;
-  const Motion m = RunMotion(testing_files::FromJson(PistonDrivenSliderCrank(0.998, 499)), AnalysisOptions{}, table);
-  ASSERT_TRUE(m.complete) << m.report.message;
-  ASSERT_EQ(m.rows(), 500);
+struct Worst {
+  double error[4] = {0, 0, 0, 0};  // per order, relative to the order's scale θ0·w^k
+  double at[4] = {0, 0, 0, 0};
+};
+
+// θ − θ0 and its derivatives against the closed form at every row.
+Worst CompareWithClosedForm(const Motion& m, double th0) {
+  const double w = M_PI / 2;
   const char* names[4] = {"crank_angle", "crank_angle_t", "crank_angle_tt", "crank_angle_ttt"};
-  // θ − θ0 and its derivatives; scale of order k: θ0·w^k (the largest magnitude over the motion).
+  Worst worst;
   for (int r = 0; r < m.rows(); ++r) {
     const double t = m.at(r, m.layout().Find("t")), c = std::cos(w * t), s = std::sin(w * t);
     const double want[4] = {th0 * (c - 1), -th0 * w * s, -th0 * w * w * c, th0 * w * w * w * s};
     for (int k = 0; k < 4; ++k) {
-      // Every order within 1e-6 of its scale to t = 0.995; in the last rows the jerk
-      // meets the round-off floor 8u·κ³ (κ ≈ 2e3 at t = 0.998), which no double-
-      // precision solve beats, and the row says so (below).
-      const double allowed = k == 3 && t > 0.995 ? 1e-4 : 1e-6;
-      const double scale = th0 * std::pow(w, k);
-      EXPECT_NEAR(m.at(r, m.layout().Find(names[k])), want[k], allowed * scale) << names[k] << " at t = " << t;
+      const double e = std::abs(m.at(r, m.layout().Find(names[k])) - want[k]) / (th0 * std::pow(w, k));
+      if (!(e <= worst.error[k])) worst.error[k] = e, worst.at[k] = t;
     }
   }
-  const int last = m.rows() - 1;
-  EXPECT_GT(m.at(last, m.layout().Find("error_bound_ttt")), 1e-6);
-  EXPECT_LT(m.at(last, m.layout().Find("error_bound_t")), 1e-6);
+  return worst;
+}
+
+Motion RunToNearTheDeadCentre(const Geometry& g) {
+  TableOptions table;
+  table.si = true;
+  table.order = 3;
+  table.all_bodies = false;
+  return RunMotion(testing_files::FromJson(PistonDrivenSliderCrank(g, 0.998, 499)), AnalysisOptions{}, table);
+}
+
+TEST(AccuracyTarget, PistonDrivenSliderCrankNearItsDeadCentre) {
+  const Motion m = RunToNearTheDeadCentre(kExact);
+  ASSERT_TRUE(m.complete) << m.report.message;
+  ASSERT_EQ(m.rows(), 500);
+  const Worst worst = CompareWithClosedForm(m, std::atan2(kExact.by, kExact.bx));
+  for (int k = 0; k < 4; ++k) {
+    std::printf("order %d: worst %.3g of its scale at t = %.3f\n", k, worst.error[k], worst.at[k]);
+    RecordProperty("worst_order_" + std::to_string(k), std::to_string(worst.error[k]));
+    // Every order within 1e-6 of its scale at every row, to t = 0.998.
+    EXPECT_LT(worst.error[k], 1e-6) << "order " << k << " at t = " << worst.at[k];
+  }
   // It is ill-conditioned there: the accuracy came from solving to what the
   // derivatives need, not from a benign geometry.
   EXPECT_GT(m.at(m.rows() - 1, m.layout().Find("condition")), 100);
+}
+
+// The same motion with the 20/50 mm crank at 60°: the solve is as accurate, but the
+// file's rounded numbers describe a slightly different mechanism, and so near the dead
+// centre the closed form of the intended one is only met to what that difference
+// allows (tools/piston_conditioning.py: one double spacing of a 70 mm coordinate moves
+// the exact jerk by 2.8e-5 of its scale there). Position and velocity are unaffected.
+TEST(AccuracyTarget, RoundedGeometryMovesTheExactJerkNotTheSolve) {
+  const Motion m = RunToNearTheDeadCentre(kRounded);
+  ASSERT_TRUE(m.complete) << m.report.message;
+  const Worst worst = CompareWithClosedForm(m, M_PI / 3);
+  for (int k = 0; k < 4; ++k) std::printf("order %d: worst %.3g of its scale at t = %.3f\n", k, worst.error[k], worst.at[k]);
+  EXPECT_LT(worst.error[0], 1e-10);
+  EXPECT_LT(worst.error[1], 1e-9);
+  EXPECT_LT(worst.error[3], 1e-5);  // 4.3e-5 when solved in double
 }
 
 }  // namespace
