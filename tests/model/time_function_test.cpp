@@ -1,6 +1,8 @@
 // Driver functions of time: exact derivatives to the 4th order.
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "model/time_function.hpp"
 
 namespace mechkin {
@@ -32,6 +34,24 @@ TEST(Expression, ClosedForms) {
                                  1.875 * std::pow(t, -0.5), -0.9375 * std::pow(t, -1.5)});
   ExpectDerivatives("-2^2", t, {-4, 0, 0, 0, 0});  // unary minus binds looser than ^
   ExpectDerivatives("2^3^2", t, {512, 0, 0, 0, 0});  // right-associative
+}
+
+// The extended-precision value (the position solve's accuracy phase) is the same
+// function: it agrees with Eval everywhere, and where double cancels it keeps the
+// 11 more bits long double has: (1 + t) − 1 at t = 1e-10 is t to 2^-64, while double
+// loses 7 of its digits.
+TEST(Expression, ExtendedValueKeepsTheDigitsDoubleCancels) {
+  for (const char* text : {"3*t^4 - 2*t + 1", "sin(2*pi*t)", "exp(-2*t)", "log(t)", "sqrt(t)", "atan2(sin(t), 2+cos(t))",
+                           "t^2.5", "asin(t/2) + acos(t/3) + tan(t/3) + atan(t) - 1/(1+t)"}) {
+    const Expression e = Expression::Parse(text);
+    EXPECT_NEAR(static_cast<double>(e.ValueExtended(0.7)), e.Eval(0.7).c[0], 4e-16 * (1 + std::abs(e.Eval(0.7).c[0]))) << text;
+  }
+  const Expression e = Expression::Parse("(1 + t) - 1");
+  const double t = 1e-10;
+  EXPECT_GT(std::abs(e.Eval(t).c[0] - t), 1e-18);
+  EXPECT_LT(std::abs(e.ValueExtended(t) - static_cast<long double>(t)), 1.1e-19L);
+  const TimeFunction in_mm(std::make_shared<Expression>(e), 1e-3);
+  EXPECT_LT(std::abs(in_mm.ValueExtended(t) - static_cast<long double>(t) * 1e-3L), 1e-22L);
 }
 
 // The composite functions agree with 5-point finite differences of the value.
