@@ -191,20 +191,31 @@ Expression Expression::Parse(const std::string& text, const ExpressionSymbols* s
   return e;
 }
 
-// Nodes are stored children first (the parser adds a node after its operands),
-// so one pass in index order evaluates the tree without recursion: no stack
-// depth grows with the length of the expression.
-Jet Expression::Eval(double t) const {
-  thread_local std::vector<Jet> value;
-  value.resize(nodes_.size());
-  const Jet time = Jet::Variable(t);
-  for (size_t i = 0; i < nodes_.size(); ++i) value[i] = EvalNode(nodes_[i], time, value);
-  return value[root_];
-}
+namespace {
 
-Jet Expression::EvalNode(const Node& n, const Jet& t, const std::vector<Jet>& v) {
+// Value-only arithmetic for the extended-precision evaluation, named like the jet
+// functions so that one node evaluator serves both.
+long double Pow(long double a, long double b) { return std::pow(a, b); }
+long double Sin(long double a) { return std::sin(a); }
+long double Cos(long double a) { return std::cos(a); }
+long double Tan(long double a) { return std::tan(a); }
+long double Asin(long double a) { return std::asin(a); }
+long double Acos(long double a) { return std::acos(a); }
+long double Atan(long double a) { return std::atan(a); }
+long double Atan2(long double y, long double x) { return std::atan2(y, x); }
+long double Exp(long double a) { return std::exp(a); }
+long double Log(long double a) { return std::log(a); }
+long double Sqrt(long double a) { return std::sqrt(a); }
+template <typename V> V ConstantOf(double c);
+template <> Jet ConstantOf<Jet>(double c) { return Jet::Constant(c); }
+template <> long double ConstantOf<long double>(double c) { return c; }
+
+}  // namespace
+
+template <typename V>
+V Expression::EvalNode(const Node& n, const V& t, const std::vector<V>& v) {
   switch (n.op) {
-    case Op::Const: return Jet::Constant(n.value);
+    case Op::Const: return ConstantOf<V>(n.value);
     case Op::Time: return t;
     case Op::Neg: return -v[n.a];
     case Op::Add: return v[n.a] + v[n.b];
@@ -223,38 +234,26 @@ Jet Expression::EvalNode(const Node& n, const Jet& t, const std::vector<Jet>& v)
     case Op::Log: return Log(v[n.a]);
     case Op::Sqrt: return Sqrt(v[n.a]);
   }
-  return Jet{};
+  return V{};
+}
+
+// Nodes are stored children first (the parser adds a node after its operands),
+// so one pass in index order evaluates the tree without recursion: no stack
+// depth grows with the length of the expression.
+Jet Expression::Eval(double t) const {
+  thread_local std::vector<Jet> value;
+  value.resize(nodes_.size());
+  const Jet time = Jet::Variable(t);
+  for (size_t i = 0; i < nodes_.size(); ++i) value[i] = EvalNode(nodes_[i], time, value);
+  return value[root_];
 }
 
 long double Expression::ValueExtended(double t) const {
   thread_local std::vector<long double> value;
   value.resize(nodes_.size());
-  for (size_t i = 0; i < nodes_.size(); ++i) value[i] = ValueNode(nodes_[i], t, value);
+  const long double time = t;
+  for (size_t i = 0; i < nodes_.size(); ++i) value[i] = EvalNode(nodes_[i], time, value);
   return value[root_];
-}
-
-long double Expression::ValueNode(const Node& n, long double t, const std::vector<long double>& v) {
-  switch (n.op) {
-    case Op::Const: return n.value;
-    case Op::Time: return t;
-    case Op::Neg: return -v[n.a];
-    case Op::Add: return v[n.a] + v[n.b];
-    case Op::Sub: return v[n.a] - v[n.b];
-    case Op::Mul: return v[n.a] * v[n.b];
-    case Op::Div: return v[n.a] / v[n.b];
-    case Op::Pow: return std::pow(v[n.a], v[n.b]);
-    case Op::Sin: return std::sin(v[n.a]);
-    case Op::Cos: return std::cos(v[n.a]);
-    case Op::Tan: return std::tan(v[n.a]);
-    case Op::Asin: return std::asin(v[n.a]);
-    case Op::Acos: return std::acos(v[n.a]);
-    case Op::Atan: return std::atan(v[n.a]);
-    case Op::Atan2: return std::atan2(v[n.a], v[n.b]);
-    case Op::Exp: return std::exp(v[n.a]);
-    case Op::Log: return std::log(v[n.a]);
-    case Op::Sqrt: return std::sqrt(v[n.a]);
-  }
-  return 0;
 }
 
 long double TimeFunction::ValueExtended(double t) const {

@@ -50,8 +50,9 @@ class Expression {
   enum class Op { Const, Time, Neg, Add, Sub, Mul, Div, Pow, Sin, Cos, Tan, Asin, Acos, Atan,
                   Atan2, Exp, Log, Sqrt };
   struct Node { Op op; double value = 0; int a = -1, b = -1; };
-  static Jet EvalNode(const Node& node, const Jet& t, const std::vector<Jet>& values);
-  static long double ValueNode(const Node& node, long double t, const std::vector<long double>& values);
+  /// One node on jets (Eval) or on long double values (ValueExtended).
+  template <typename V>
+  static V EvalNode(const Node& node, const V& t, const std::vector<V>& values);
   friend class ExpressionParser;
   std::string text_;
   std::vector<Node> nodes_;
