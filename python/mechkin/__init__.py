@@ -17,7 +17,8 @@ from numpy.lib.stride_tricks import as_strided as _as_strided
 
 from . import _mechkin
 
-__all__ = ["load", "loads", "Model", "Motion", "CheckReport", "FormatError", "Diagnostic", "RunStop", "sweep"]
+__all__ = ["load", "loads", "Model", "Motion", "CheckReport", "RangeReport", "ToleranceReport", "FormatError",
+           "Diagnostic", "RunStop", "sweep"]
 
 
 class Diagnostic(tuple):
@@ -97,6 +98,65 @@ class CheckReport:
         return "CheckReport(%r, mobility=%r, driven=%r)" % (self._data.get("name"), m.get("mobility"), m.get("driven"))
 
 
+class _Report:
+    """A report of the core as attributes (its JSON form's keys), with the CLI's text
+    as str(report). ok is False with .message saying why when it could not be made."""
+
+    def __init__(self, data, text):
+        self._data, self._text = data, text
+
+    def __getattr__(self, key):
+        try:
+            return self._data[key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+    ok = property(lambda self: bool(self._data["ok"]))
+
+    def to_dict(self):
+        return _json.loads(_json.dumps(self._data))
+
+    def __str__(self):
+        return self._text
+
+
+class RangeReport(_Report):
+    """`mechkin range`: per driver its design value and both ends (kind, value, message)."""
+
+    def __getitem__(self, driver):
+        for d in self._data["drivers"]:
+            if d["driver"] == driver:
+                return d
+        raise KeyError(driver)
+
+    def __repr__(self):
+        return "RangeReport(%s)" % ", ".join("%s: %s..%s" % (d["driver"], d["lower"]["value"], d["upper"]["value"])
+                                              for d in self._data.get("drivers", []))
+
+
+class ToleranceReport(_Report):
+    """`mechkin tolerance`: per output column the worst case and RSS at every row."""
+
+    def column(self, name):
+        for c in self._data["columns"]:
+            if c["name"] == name:
+                return c
+        raise KeyError(name)
+
+    def to_pandas(self):
+        """One row per time: worst case and RSS of every column (`C worst_case`, `C rss`)."""
+        import pandas as pd
+        frame = {"t": self._data["t"]}
+        for c in self._data["columns"]:
+            frame[c["name"] + " worst_case"] = c["worst_case"]
+            frame[c["name"] + " rss"] = c["rss"]
+        return pd.DataFrame(frame)
+
+    def __repr__(self):
+        return "ToleranceReport(%d columns, parameters %s)" % (len(self._data.get("columns", [])),
+                                                              sorted(self._data.get("tolerances", {})))
+
+
 class Model:
     """A compiled, immutable mechanism."""
 
@@ -128,6 +188,21 @@ class Model:
     def check(self):
         """Grübler count, rank mobility, redundancy, idle freedoms, driving status, expectations."""
         return CheckReport(self._core.check())
+
+    def range(self, driver=None, steps=360, span=None, tol=1e-10):
+        """Range of motion of each driver (or of `driver`) from the design pose, like
+        `mechkin range`: each end located and labelled 'limit', 'branch point',
+        'full turn', 'open' or 'failed'. span: search span of translations and
+        distances in file units (default 4x the mechanism's size)."""
+        data, text = self._core.range(driver or "", int(steps), 0.0 if span is None else float(span), float(tol))
+        return RangeReport(data, text)
+
+    def tolerance(self, order=0, monte_carlo=0, seed=1, threads=None, tol=1e-10):
+        """Tolerance stack-up of the outputs, like `mechkin tolerance`: per column and
+        row the worst case and RSS from exact sensitivities, the parameters ranked by
+        contribution, and with monte_carlo=N a seeded Monte-Carlo check."""
+        data, text = self._core.tolerance(int(order), int(monte_carlo), int(seed), int(threads or 0), float(tol))
+        return ToleranceReport(data, text)
 
     def run(self, order=3, tol=1e-10, solver="newton", formulation="omega", bodies=None, outputs=None,
             si=False, start=None, end=None, steps=None, forces=None, sensitivity=None):

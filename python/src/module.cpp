@@ -5,13 +5,18 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <fstream>
 #include <memory>
 #include <sstream>
 
 #include "analysis/check_report.hpp"
 #include "analysis/motion.hpp"
+#include "analysis/range.hpp"
+#include "analysis/tolerance.hpp"
 #include "io/check_report_writer.hpp"
+#include "io/range_report_writer.hpp"
+#include "io/tolerance_report_writer.hpp"
 #include "io/table_writer.hpp"
 #include "analysis/sweep.hpp"
 #include "model/loader.hpp"
@@ -84,6 +89,55 @@ py::dict CheckModel(const LoadedModel& m) {
     j = CheckReportJson(CheckLoaded(m.source, loaded));
   }
   return JsonToPython(j);
+}
+
+// Argument checks of the Python front end: the CLI's ranges, as ValueError.
+void Require(bool ok, const std::string& what) {
+  if (!ok) throw py::value_error(what);
+}
+
+// (report dict, text): `mechkin range --format json` and its text form.
+py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int steps, double span, double tol) {
+  Require(steps >= 4 && steps <= 10000000, "steps must be between 4 and 10000000");
+  Require(span >= 0 && std::isfinite(span), "span must be a positive length in file units (0: 4 x the mechanism's size)");
+  Require(tol >= 1e-15 && tol <= 1e-3, "tol must be between 1e-15 and 1e-3");
+  RangeOptions options;
+  options.driver = driver;
+  options.steps = steps;
+  options.span = span;
+  options.tolerance = tol;
+  RangeReport report;
+  {
+    py::gil_scoped_release release;
+    report = CalcRange(*m.model, options);
+  }
+  std::ostringstream text;
+  PrintRangeReport(report, text);
+  return py::make_tuple(JsonToPython(RangeReportJson(report)), text.str());
+}
+
+// (report dict, text): `mechkin tolerance --format json` and its text form.
+py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, unsigned long seed, int threads,
+                           double tol) {
+  Require(order >= 0 && order <= 4, "order must be between 0 and 4");
+  Require(monte_carlo >= 0 && monte_carlo <= 100000000, "monte_carlo must be between 0 and 100000000");
+  Require(threads >= 0 && threads <= 4096, "threads must be between 0 (all cores) and 4096");
+  Require(tol >= 1e-15 && tol <= 1e-3, "tol must be between 1e-15 and 1e-3");
+  ToleranceOptions options;
+  options.order = order;
+  options.monte_carlo = monte_carlo;
+  options.seed = seed;
+  options.threads = threads;
+  options.analysis.tolerance = tol;
+  options.analysis.keep_step_diagnostics = false;
+  ToleranceReport report;
+  {
+    py::gil_scoped_release release;
+    report = AnalyzeTolerances(*m.model, options);
+  }
+  std::ostringstream text;
+  PrintToleranceReport(report, text);
+  return py::make_tuple(JsonToPython(ToleranceReportJson(report)), text.str());
 }
 
 const char* QuantityName(Quantity q) {
@@ -373,7 +427,10 @@ PYBIND11_MODULE(_mechkin, mod) {
            py::arg("bodies"), py::arg("outputs"), py::arg("si"), py::arg("start"), py::arg("end"), py::arg("steps"),
            py::arg("forces"), py::arg("sensitivity") = std::vector<std::string>{})
       .def_readonly("overrides", &LoadedModel::overrides)
-      .def("run_variant", &RunVariantSummary, py::arg("values"), py::arg("order"), py::arg("tol"));
+      .def("run_variant", &RunVariantSummary, py::arg("values"), py::arg("order"), py::arg("tol"))
+      .def("range", &RangeOfModel, py::arg("driver"), py::arg("steps"), py::arg("span"), py::arg("tol"))
+      .def("tolerance", &ToleranceOfModel, py::arg("order"), py::arg("monte_carlo"), py::arg("seed"),
+           py::arg("threads"), py::arg("tol"));
   py::class_<PyMotion, std::shared_ptr<PyMotion>>(mod, "CoreMotion")
       .def_property_readonly("values", &Values)
       .def("columns", &Columns)

@@ -55,7 +55,11 @@ ToleranceColumn LinearStack(const Motion& m, int col, const ToleranceReport& rep
   return tc;
 }
 
-// Per thread: the largest |deviation| and the running sums per (column, row).
+// Monte-Carlo samples are summed in this many fixed chunks (at most): enough to keep
+// every core busy, few enough that the chunks' sums stay small next to the samples.
+constexpr int kMonteCarloChunks = 64;
+
+// Per chunk: the largest |deviation| and the running sums per (column, row).
 struct MonteCarloSums {
   std::vector<double> max_abs, sum, sum_sq;
   int runs = 0, failed = 0;
@@ -97,21 +101,28 @@ void MonteCarlo(const Model& model, const Motion& nominal, const std::vector<int
   for (auto& s : samples)
     for (size_t p = 0; p < rep->parameters.size(); ++p)
       s[rep->parameters[p]] = model.FindParameter(rep->parameters[p])->value + unit(rng) * rep->tolerances[p];
+  // Sums in a fixed order: the samples fall into kMonteCarloChunks fixed runs of
+  // consecutive samples, each summed in sample order, and the chunks are added in
+  // chunk order, so the report is the same to the last bit whatever the number of
+  // threads and however they share the chunks.
   const size_t cells = cols.size() * nominal.rows();
-  std::vector<MonteCarloSums> acc(ThreadCount(options.threads),
-                                  MonteCarloSums{std::vector<double>(cells), std::vector<double>(cells),
-                                                 std::vector<double>(cells), 0, 0});
-  ParallelFor(options.monte_carlo, options.threads,
-              [&](int i, int th) { RunSample(model, samples[i], nominal, cols, options, &acc[th]); });
+  const int chunks = std::min(options.monte_carlo, kMonteCarloChunks);
+  std::vector<MonteCarloSums> acc(chunks, MonteCarloSums{std::vector<double>(cells), std::vector<double>(cells),
+                                                         std::vector<double>(cells), 0, 0});
+  ParallelFor(chunks, options.threads, [&](int c, int) {
+    const int first = static_cast<int>(static_cast<long long>(options.monte_carlo) * c / chunks);
+    const int last = static_cast<int>(static_cast<long long>(options.monte_carlo) * (c + 1) / chunks);
+    for (int i = first; i < last; ++i) RunSample(model, samples[i], nominal, cols, options, &acc[c]);
+  });
   MonteCarloSums total = acc[0];
-  for (size_t th = 1; th < acc.size(); ++th) {
+  for (int c = 1; c < chunks; ++c) {
     for (size_t i = 0; i < cells; ++i) {
-      total.max_abs[i] = std::max(total.max_abs[i], acc[th].max_abs[i]);
-      total.sum[i] += acc[th].sum[i];
-      total.sum_sq[i] += acc[th].sum_sq[i];
+      total.max_abs[i] = std::max(total.max_abs[i], acc[c].max_abs[i]);
+      total.sum[i] += acc[c].sum[i];
+      total.sum_sq[i] += acc[c].sum_sq[i];
     }
-    total.runs += acc[th].runs;
-    total.failed += acc[th].failed;
+    total.runs += acc[c].runs;
+    total.failed += acc[c].failed;
   }
   rep->samples = total.runs;
   rep->failed_samples = total.failed;

@@ -40,6 +40,26 @@ TEST(Tolerance, LinearEnvelopesMatchMonteCarlo) {
   EXPECT_EQ(checked, 3);  // piston.x, piston.y, stroke
 }
 
+// Seeded means reproducible to the last bit: the same report on 1, 2 and 3 threads
+// (the Monte-Carlo sums run in fixed chunks, added in a fixed order).
+TEST(Tolerance, MonteCarloIsTheSameOnAnyNumberOfThreads) {
+  LoadResult r = LoadMechanismFile(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-slider-crank.json");
+  ASSERT_TRUE(r.ok());
+  ToleranceOptions options;
+  options.monte_carlo = 300;
+  options.seed = 11;
+  std::vector<double> first;
+  for (int threads : {1, 2, 3}) {
+    options.threads = threads;
+    const ToleranceReport rep = AnalyzeTolerances(*r.model, options);
+    ASSERT_TRUE(rep.ok) << rep.message;
+    std::vector<double> stats;
+    for (const auto& c : rep.columns) stats.insert(stats.end(), {c.mc_max_deviation, c.mc_max_std, c.t_mc_std});
+    if (first.empty()) first = stats;
+    for (size_t k = 0; k < stats.size(); ++k) EXPECT_EQ(stats[k], first[k]) << threads << " threads, statistic " << k;
+  }
+}
+
 // piston.y = offset exactly: its worst case is the offset's tolerance, all of it.
 TEST(Tolerance, OffsetAloneMovesThePistonLine) {
   LoadResult r = LoadMechanismFile(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-slider-crank.json");
