@@ -10,6 +10,29 @@ namespace mechkin {
 
 // Recursive-descent parser. Nesting is limited so that hostile input cannot
 // exhaust the stack.
+namespace {
+
+bool IsDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+bool IsNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }
+
+// End of the number token starting at `start`: digits and dots, then an exponent
+// (e, an optional sign, digits) when one follows.
+size_t NumberEnd(const std::string& s, size_t start) {
+  size_t pos = start;
+  while (pos < s.size() && (IsDigit(s[pos]) || s[pos] == '.')) ++pos;
+  if (pos < s.size() && (s[pos] == 'e' || s[pos] == 'E')) {
+    size_t p = pos + 1;
+    if (p < s.size() && (s[p] == '+' || s[p] == '-')) ++p;
+    if (p < s.size() && IsDigit(s[p])) {
+      pos = p;
+      while (pos < s.size() && IsDigit(s[pos])) ++pos;
+    }
+  }
+  return pos;
+}
+
+}  // namespace
+
 class ExpressionParser {
  public:
   ExpressionParser(Expression* e, const ExpressionSymbols* symbols, bool allow_time)
@@ -119,15 +142,7 @@ class ExpressionParser {
   }
   int ParseNumber() {
     const size_t start = pos_;
-    while (pos_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '.')) ++pos_;
-    if (pos_ < s_.size() && (s_[pos_] == 'e' || s_[pos_] == 'E')) {
-      size_t p = pos_ + 1;
-      if (p < s_.size() && (s_[p] == '+' || s_[p] == '-')) ++p;
-      if (p < s_.size() && std::isdigit(static_cast<unsigned char>(s_[p]))) {
-        pos_ = p;
-        while (pos_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[pos_]))) ++pos_;
-      }
-    }
+    pos_ = NumberEnd(s_, pos_);
     const std::string tok = s_.substr(start, pos_ - start);
     char* end = nullptr;
     const double v = std::strtod(tok.c_str(), &end);
@@ -178,6 +193,24 @@ class ExpressionParser {
 
 bool Expression::IsReservedName(const std::string& name) {
   return name == "t" || name == "pi" || ExpressionParser::Functions().count(name) > 0;
+}
+
+std::vector<std::string> Expression::Names(const std::string& text) {
+  std::vector<std::string> names;
+  for (size_t i = 0; i < text.size();) {
+    if (IsDigit(text[i]) || text[i] == '.') {
+      i = NumberEnd(text, i);
+    } else if (IsNameChar(text[i])) {
+      size_t end = i;
+      while (end < text.size() && IsNameChar(text[end])) ++end;
+      std::string name = text.substr(i, end - i);
+      if (!IsReservedName(name)) names.push_back(std::move(name));
+      i = end;
+    } else {
+      ++i;
+    }
+  }
+  return names;
 }
 
 Expression Expression::Parse(const std::string& text, const ExpressionSymbols* symbols, bool allow_time) {

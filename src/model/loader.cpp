@@ -606,18 +606,17 @@ class SpecReader {
       if (param) param->overridden = true;
       return true;
     }
-    if (value.is_string()) {
-      try {
-        Expression::Parse(value.get<std::string>(), &rd_.symbols(), false);
-      } catch (const ExpressionError& err) {
-        const bool later = std::any_of(pending.begin(), pending.end(),
-                                       [&](const auto& p) { return p.first == err.unknown_name && p.first != name; });
+    // Deferred while it names another parameter not resolved yet (a scan, not a parse:
+    // resolving is then one parse per parameter, and no exception in the normal path).
+    if (value.is_string())
+      for (const std::string& used : Expression::Names(value.get<std::string>())) {
+        const bool later = used != name && !rd_.symbols().count(used) &&
+                           std::any_of(pending.begin(), pending.end(), [&](const auto& p) { return p.first == used; });
         if (later) {
           waiting->emplace_back(name, value);
           return false;
         }
       }
-    }
     if (const auto d = rd_.ScalarValue(value, ptr, "parameter '" + name + "'")) rd_.symbols()[name] = *d;
     return true;
   }

@@ -38,6 +38,9 @@ class Expression {
                           bool allow_time = true);
   /// Identifiers reserved by the grammar (t, pi and the function names).
   static bool IsReservedName(const std::string& name);
+  /// The names an expression uses besides the reserved ones (its parameters), found
+  /// by scanning alone: no parse, no exception, whatever the text.
+  static std::vector<std::string> Names(const std::string& text);
   /// Value and derivatives at t. Throws JetDomainError outside the domain.
   Jet Eval(double t) const;
   /// The value alone at t in extended precision (long double), for the accuracy phase

@@ -54,6 +54,17 @@ TEST(Expression, ExtendedValueKeepsTheDigitsDoubleCancels) {
   EXPECT_LT(std::abs(in_mm.ValueExtended(t) - static_cast<long double>(t) * 1e-3L), 1e-22L);
 }
 
+// The names a parameter expression depends on, by scanning: exponents are part of
+// their numbers, reserved names are not parameters, repeats stay.
+TEST(Expression, NamesAreTheParametersUsed) {
+  EXPECT_EQ(Expression::Names("2e-3*a + sin(b_1) - t*pi + 1.5E+2*c/a"),
+            (std::vector<std::string>{"a", "b_1", "c", "a"}));
+  EXPECT_EQ(Expression::Names("sqrt(rod^2 - (offset - pin_y)^2)"),
+            (std::vector<std::string>{"rod", "offset", "pin_y"}));
+  EXPECT_TRUE(Expression::Names("1e5 + .5e-2 * 3").empty());
+  EXPECT_EQ(Expression::Names("2ea"), (std::vector<std::string>{"ea"}));  // "2e" has no exponent digits
+}
+
 // The composite functions agree with 5-point finite differences of the value.
 TEST(Expression, CompositesAgreeWithFiniteDifferences) {
   for (const char* text : {"tan(t/3)", "asin(t/2)", "acos(t/3)", "atan2(sin(t), 2+cos(t))", "exp(sin(t))*t^3"}) {
