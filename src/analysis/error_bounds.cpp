@@ -21,6 +21,12 @@ namespace {
 // would only spend iterations that cannot halve it.
 constexpr double kResidualFloor = 16 * std::numeric_limits<double>::epsilon() / 2;
 
+// Below this condition number a double solve is already within a few units of κ·u
+// and the extended phase gains at most κ there, for about 80 % more time per step at
+// --tol 1e-14 (planar four-bar: 5.3 → 10 µs); above it the double floor is what limits
+// the derivatives (the piston near its dead centre: jerk 3.7e-5 → 1.9e-7).
+constexpr double kMinExtendedCondition = 100;
+
 double UnclampedResidual(double tolerance, double condition, int order) {
   const double k = std::max(condition, 1.0);
   return order >= 1 ? tolerance / (k * k) : tolerance / k;
@@ -33,7 +39,7 @@ double ResidualForAccuracy(double tolerance, double condition, int order) {
 }
 
 bool NeedsExtendedResidual(double tolerance, double condition, int order) {
-  return UnclampedResidual(tolerance, condition, order) < kResidualFloor;
+  return condition >= kMinExtendedCondition && UnclampedResidual(tolerance, condition, order) < kResidualFloor;
 }
 
 }  // namespace mechkin

@@ -18,7 +18,9 @@ void CalcErrorBounds(double condition, double residual, int max_order, double* b
 double ResidualForAccuracy(double tolerance, double condition, int order);
 
 /// True when that residual lies below the double round-off floor, so that only an
-/// extended-precision residual (NewtonSolver's accuracy phase) can deliver it.
+/// extended-precision residual (NewtonSolver's accuracy phase) can deliver it, and the
+/// condition number is at least 100 (below, double is within a few κ·u and the
+/// extended phase would cost more than it gains).
 bool NeedsExtendedResidual(double tolerance, double condition, int order);
 
 }  // namespace mechkin

@@ -1,6 +1,7 @@
 #include "kinematics/newton.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace mechkin {
 
@@ -153,14 +154,18 @@ Real NewtonSolver::ExtendedResidual() {
 // by u relative, which the derivatives do not amplify like a residual: they read the
 // orientations, which the rounding keeps to u.
 void NewtonSolver::RefineExtended(SystemState* s, SolveSummary* sum) {
-  // Φ_q at this pose: a held factorization from the previous step contracts only
-  // linearly here, where Φ_q turns fastest.
-  if (!Factorize(*s)) return;
+  if (!factorized_) return;
   for (size_t b = 0; b < s->bodies.size(); ++b) ext_poses_[b] = ExtendedPose::Of(s->bodies[b]);
   EvalDriverValuesExtended(sys_.model(), s->t, &ext_drivers_);
   CalcPhiExtended(sys_, ext_poses_, ext_drivers_, s->angle_ref, &ext_phi_);
   Real residual = ExtendedResidual();
-  for (int extra = 0; extra < 3 && residual > 0; ++extra) {
+  // The held factorization first (usually Φ_q at the previous step: no new
+  // factorization where it contracts by 10x); a fresh one where it does not — near a
+  // dead centre, where Φ_q turns fastest.
+  // Round-off of Φ in long double, scaled like the residual (16 units).
+  const Real floor = 16 * std::numeric_limits<Real>::epsilon();
+  bool fresh = false;
+  for (int extra = 0; extra < 4 && residual > floor; ++extra) {
     for (size_t k = 0; k < rows_.size(); ++k) rhs_[k] = -static_cast<double>(ext_phi_[rows_[k]]);
     BackSolve(rhs_, &dq_);
     if (!dq_.allFinite()) break;
@@ -174,7 +179,10 @@ void NewtonSolver::RefineExtended(SystemState* s, SolveSummary* sum) {
     CalcPhiExtended(sys_, ext_poses_, ext_drivers_, s->angle_ref, &ext_phi_);
     const Real before = residual;
     residual = ExtendedResidual();
-    if (!(residual < 0.5L * before)) break;
+    if (residual < 0.1L * before) continue;
+    if (fresh) break;  // at round-off
+    fresh = true;
+    if (!Factorize(*s)) return;
   }
   for (size_t b = 0; b < s->bodies.size(); ++b) {
     BodyKinematics& k = s->bodies[b];
