@@ -4,7 +4,7 @@
     /usr/bin/python3 tools/closed_form_errors.py      (or PYTHONPATH=build/python)
 
 Bennett 40/65 deg over a turn (Bennett's closure), the piston-driven slider-crank
-toward its dead centre (tests/data/piston-driven-slider-crank.json), and the input
+toward its dead centre (geometry stored exactly, and 20/50 mm), and the input
 limit of a non-Grashof four-bar (the same mechanisms as the C++ tests)."""
 import json
 import math
@@ -53,10 +53,32 @@ def bennett_error(tol):
     return m.complete, len(m.reselections), np.abs(np.angle(np.exp(1j * (t2 - want)))).max()
 
 
-def piston_errors():
-    doc = json.load(open(os.path.join(ROOT, "tests/data/piston-driven-slider-crank.json")))
+def piston_doc(unit, a, b, bx, by):
+    """The piston-driven slider-crank of tests/analysis/accuracy_target_test.cpp: the crank
+    angle is atan2(by, bx)·cos(πt/2), the dead centre at t = 1; run to t = 0.998."""
+    th0, cx = math.atan2(by, bx), bx + math.sqrt(b * b - by * by)
+    fn = "%.17g*cos(%.17g*cos(pi*t/2)) + sqrt(%.17g - %.17g*sin(%.17g*cos(pi*t/2))^2) - %.17g" % (
+        a, th0, b * b, a * a, th0, cx)
+    rev = lambda n, b1, b2, x, y: {"name": n, "type": "revolute", "body1": b1, "body2": b2, "origin": [x, y, 0], "axis": [0, 0, 1]}
+    return {"mechkin": 1, "units": {"length": unit, "angle": "deg"},
+            "bodies": [{"name": "crank", "position": [bx / 2, by / 2, 0]},
+                       {"name": "rod", "position": [(bx + cx) / 2, by / 2, 0]},
+                       {"name": "slider", "position": [cx, 0, 0]}],
+            "joints": [rev("A", "ground", "crank", 0, 0), rev("B", "crank", "rod", bx, by), rev("C", "rod", "slider", cx, 0),
+                       {"name": "P", "type": "prismatic", "body1": "ground", "body2": "slider", "origin": [cx, 0, 0],
+                        "axis": [1, 0, 0]}],
+            "drivers": [{"name": "piston", "type": "translation", "joint": "P", "function": fn}],
+            "outputs": [{"name": "crank_angle", "type": "joint", "joint": "A"}],
+            "analysis": {"start": 0, "end": 0.998, "steps": 499}}, th0
+
+
+def piston_errors(exact):
+    """Worst error / scale per order. exact: crank 34, rod 50, pin (16, 30) in 1/64 m, which
+    the file stores exactly; else 20/50 mm at 60°, whose rounded coordinates move the answer."""
+    doc, th0 = piston_doc("m", 34 / 64, 50 / 64, 16 / 64, 30 / 64) if exact else \
+        piston_doc("mm", 20.0, 50.0, 10.0, 10 * math.sqrt(3))
     m = mechkin.loads(doc).run(order=3, si=True, bodies=[])
-    th0, w = math.pi / 3, math.pi / 2
+    w = math.pi / 2
     c, s = np.cos(w * m.t), np.sin(w * m.t)
     want = [th0 * (c - 1), -th0 * w * s, -th0 * w * w * c, th0 * w ** 3 * s]
     names = ["crank_angle", "crank_angle_t", "crank_angle_tt", "crank_angle_ttt"]
@@ -89,6 +111,7 @@ if __name__ == "__main__":
     for tol in (1e-10, 1e-12):
         done, reselections, err = bennett_error(tol)
         print("Bennett 40/65, tol %g: complete %s, %d re-selections, largest error %.2g rad" % (tol, done, reselections, err))
-    print("piston toward its dead centre, worst error / scale (angle, velocity, acceleration, jerk): %s"
-          % ", ".join("%.2g" % e for e in piston_errors()))
+    for exact, what in ((True, "stored exactly"), (False, "20/50 mm, rounded")):
+        print("piston toward its dead centre (%s), worst error / scale (angle, velocity, acceleration, jerk): %s"
+              % (what, ", ".join("%.2g" % e for e in piston_errors(exact))))
     print("non-Grashof four-bar, input limit located to %.2g rad" % non_grashof_limit_error())

@@ -96,7 +96,16 @@ void Require(bool ok, const std::string& what) {
   if (!ok) throw py::value_error(what);
 }
 
-// (report dict, text): `mechkin range --format json` and its text form.
+// (report dict, text): a report's JSON form and the CLI's text form of it.
+template <typename Report>
+py::tuple ReportAndText(const Report& report, nlohmann::json (*to_json)(const Report&),
+                        void (*print)(const Report&, std::ostream&)) {
+  std::ostringstream text;
+  print(report, text);
+  return py::make_tuple(JsonToPython(to_json(report)), text.str());
+}
+
+// `mechkin range`: (report dict, text).
 py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int steps, double span, double tol) {
   Require(steps >= 4 && steps <= 10000000, "steps must be between 4 and 10000000");
   Require(span >= 0 && std::isfinite(span), "span must be a positive length in file units (0: 4 x the mechanism's size)");
@@ -111,12 +120,10 @@ py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int step
     py::gil_scoped_release release;
     report = CalcRange(*m.model, options);
   }
-  std::ostringstream text;
-  PrintRangeReport(report, text);
-  return py::make_tuple(JsonToPython(RangeReportJson(report)), text.str());
+  return ReportAndText(report, &RangeReportJson, &PrintRangeReport);
 }
 
-// (report dict, text): `mechkin tolerance --format json` and its text form.
+// `mechkin tolerance`: (report dict, text).
 py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, unsigned long seed, int threads,
                            double tol) {
   Require(order >= 0 && order <= 4, "order must be between 0 and 4");
@@ -135,9 +142,7 @@ py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, uns
     py::gil_scoped_release release;
     report = AnalyzeTolerances(*m.model, options);
   }
-  std::ostringstream text;
-  PrintToleranceReport(report, text);
-  return py::make_tuple(JsonToPython(ToleranceReportJson(report)), text.str());
+  return ReportAndText(report, &ToleranceReportJson, &PrintToleranceReport);
 }
 
 const char* QuantityName(Quantity q) {
