@@ -436,8 +436,9 @@ void SetLockedVerdict(const Model& model, MobilityReport* rep) {
 // Models too large for the dense SVD (more than 200 bodies): the same analysis with
 // the sparse rank-revealing QR (kinematics/sparse_rank.hpp). The margin reported is
 // the QR's (smallest kept pivot |R_kk|, largest column left over), not singular
-// values; the search for a more generic pose, the joint-change suggestions and the
-// locked / singular-design-pose diagnoses are left to the dense path.
+// values; the search for a more generic pose, the joint-change suggestions, the
+// singular-design-pose diagnosis and naming the locking joints are left to the dense
+// path (the "locked by the joints" verdict itself is the same).
 MobilityReport CalcMobilitySparse(const Model& model) {
   MobilityReport rep;
   rep.rank_method = "sparse-qr";
@@ -471,6 +472,7 @@ MobilityReport CalcMobilitySparse(const Model& model) {
   FindIdleFreedoms(model, state, Jf, &rep);
   ClassifyDriving(model, [&] { return fr.NullSpace(kMaxNamedFreedoms); }, &rep);
   if (rep.redundant > 0) SetOverconstrainedVerdict(&rep);
+  if (rep.mobility == 0 && n > 0) SetLockedVerdict(model, &rep);  // names no joints past 60
   return rep;
 }
 

@@ -36,6 +36,25 @@ TEST(Diagnoses, JointsThatLockTheMechanismAreNamed) {
   EXPECT_EQ(run.message.find("over-driven"), std::string::npos) << run.message;
 }
 
+// The same verdict from the sparse path (more than 200 bodies): 201 bodies, each held
+// to ground by two revolutes at one point with crossed axes, cannot move at all.
+TEST(Diagnoses, LockedLargeModelsAreCalledLockedToo) {
+  nlohmann::json j = {{"mechkin", 1}, {"bodies", nlohmann::json::array()}, {"joints", nlohmann::json::array()}};
+  for (int k = 0; k < 201; ++k) {
+    const std::string b = "b" + std::to_string(k);
+    j["bodies"].push_back({{"name", b}, {"position", {k, 1, 0}}});
+    for (int axis = 0; axis < 2; ++axis)
+      j["joints"].push_back({{"name", b + (axis ? "x" : "z")}, {"type", "revolute"}, {"body1", "ground"}, {"body2", b},
+                             {"origin", {k, 0, 0}}, {"axis", axis ? nlohmann::json{1, 0, 0} : nlohmann::json{0, 0, 1}}});
+  }
+  const MobilityReport r = CalcMobility(testing_files::FromJson(j));
+  EXPECT_EQ(r.rank_method, "sparse-qr");
+  EXPECT_EQ(r.mobility, 0);
+  EXPECT_EQ(r.redundant, 201 * 4);
+  EXPECT_TRUE(r.locked);
+  EXPECT_NE(r.verdict.find("locked by the joints"), std::string::npos) << r.verdict;
+}
+
 // Every leg in a radial plane: the legs cannot resist a turn about the centre line
 // at the design pose; a little away they drive the platform fully.
 TEST(Diagnoses, ASingularDesignPoseIsCalledThat) {
