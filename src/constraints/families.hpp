@@ -30,7 +30,8 @@ class SphericalConstraint : public Constraint {
   const char* family() const override { return "SPH"; }
   int LengthPower() const override { return 1; }
 
-  /// Φ on any pose type (BodyKinematics or ExtendedPose): S = double or Real.
+  /// Φ = r^P_j − r^P_i (§3.1) on any pose type (BodyKinematics or ExtendedPose):
+  /// S = double or Real. Every family's Phi below has this signature (f, angle ref).
   template <class Pose, typename S>
   void Phi(const Pose& i, const Pose& j, S, double, S* phi) const {
     const Eigen::Matrix<S, 3, 1> d = j.Point(s_j_) - i.Point(s_i_);
@@ -60,6 +61,7 @@ class DistanceConstraint : public Constraint {
     return std::sqrt(std::max(phi + L * L, 0.0)) - L;  // |d| − L
   }
 
+  /// Φ = dᵀd − L² (§3.2), or − f² (§3.7).
   template <class Pose, typename S>
   void Phi(const Pose& i, const Pose& j, S f, double, S* phi) const {
     const S L = driven() ? f : S(length_);
@@ -84,6 +86,7 @@ class Dot1Constraint : public Constraint {
   const char* family() const override { return "DOT_1"; }
   int LengthPower() const override { return 0; }
 
+  /// Φ = a_iᵀa_j (§3.3).
   template <class Pose, typename S>
   void Phi(const Pose& i, const Pose& j, S, double, S* phi) const {
     *phi = i.Vector(a_i_).dot(j.Vector(a_j_));
@@ -108,6 +111,7 @@ class Dot2Constraint : public Constraint {
   int LengthPower() const override { return 1; }
   double length() const { return a_i_.norm(); }
 
+  /// Φ = a_iᵀd_ij (§3.4).
   template <class Pose, typename S>
   void Phi(const Pose& i, const Pose& j, S, double, S* phi) const {
     *phi = i.Vector(a_i_).dot(j.Point(s_j_) - i.Point(s_i_));
@@ -130,6 +134,7 @@ class Dot2DistanceDriver : public Constraint {
   const char* family() const override { return "D2DD"; }
   int LengthPower() const override { return 1; }
 
+  /// Φ = a_iᵀd_ij / L − f (§3.8).
   template <class Pose, typename S>
   void Phi(const Pose& i, const Pose& j, S f, double ref, S* phi) const {
     dot2_.Phi(i, j, f, ref, phi);
@@ -165,6 +170,7 @@ class RotationDriver : public Constraint {
     const auto fj = j.Vector(fj_);
     return UnwrapAngle(i.Vector(gi_).dot(fj), i.Vector(fi_).dot(fj), ref);
   }
+  /// Φ = θ_ij − f (§3.9).
   template <class Pose, typename S>
   void Phi(const Pose& i, const Pose& j, S f, double ref, S* phi) const {
     *phi = Angle(i, j, ref) - f;
@@ -204,6 +210,7 @@ class ScrewConstraint : public Constraint {
   const char* family() const override { return "SDA"; }
   int LengthPower() const override { return 1; }
 
+  /// Φ = h_iᵀd_ij − λ_s θ_ij (§3.10).
   template <class Pose, typename S>
   void Phi(const Pose& i, const Pose& j, S f, double ref, S* phi) const {
     dot2_.Phi(i, j, f, ref, phi);
