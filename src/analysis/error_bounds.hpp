@@ -19,8 +19,10 @@ double ResidualForAccuracy(double tolerance, double condition, int order);
 
 /// True when that residual lies below the double round-off floor, so that only an
 /// extended-precision residual (NewtonSolver's accuracy phase) can deliver it, and the
-/// condition number is at least 100 (below, double is within a few κ·u and the
-/// extended phase would cost more than it gains).
-bool NeedsExtendedResidual(double tolerance, double condition, int order);
+/// row is approaching a singular position: κ ≥ 100 and at least 10 times the smallest
+/// condition seen along the run (`regular_condition`). A κ that is high all along (a
+/// long geared chain: 6e3 at every row) costs no digits per derivative order the way a
+/// dead centre does, and there the phase would cost more than it gains.
+bool NeedsExtendedResidual(double tolerance, double condition, double regular_condition, int order);
 
 }  // namespace mechkin

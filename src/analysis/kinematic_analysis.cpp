@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "analysis/assembly.hpp"
 #include "analysis/error_bounds.hpp"
@@ -111,6 +112,7 @@ class Stepper {
   SolveSummary last_;
   double prev_sign_ = 0;
   double last_condition_ = 1;  // the previous row's condition estimate
+  double regular_condition_ = std::numeric_limits<double>::infinity();  // the smallest along the run
   double reselect_above_ = kReselectCondition;  // condition that triggers the next search
   bool have_sign_ = false;
   Eigen::VectorXd phi_;
@@ -136,7 +138,7 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
   solve_.target = accuracy_phase ? ResidualForAccuracy(options_.tolerance, last_condition_, options_.order) : 0;
   // Below double round-off the residual is evaluated in extended precision.
   solve_.extended_precision =
-      accuracy_phase && NeedsExtendedResidual(options_.tolerance, last_condition_, options_.order);
+      accuracy_phase && NeedsExtendedResidual(options_.tolerance, last_condition_, regular_condition_, options_.order);
   last_ = SolvePosition(*ws_, solve_, &s_, reuse && options_.modified_newton);
   if (!last_.success) return Outcome::Failed;
   const double sign = ws_->factorization().Sign();
@@ -184,6 +186,7 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   }
   diag->condition = ws_->factorization().ConditionEstimate();
   last_condition_ = diag->condition;
+  regular_condition_ = std::min(regular_condition_, diag->condition);
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
 }
 

@@ -159,11 +159,15 @@ void NewtonSolver::RefineExtended(SystemState* s, SolveSummary* sum) {
   EvalDriverValuesExtended(sys_.model(), s->t, &ext_drivers_);
   CalcPhiExtended(sys_, ext_poses_, ext_drivers_, s->angle_ref, &ext_phi_);
   Real residual = ExtendedResidual();
+  // Round-off of Φ in long double, scaled like the residual: 16 units of the largest
+  // coordinate (relative to the characteristic length; 1 for the rotation rows).
+  Real extent = 1;
+  for (const ExtendedPose& pose : ext_poses_)
+    extent = std::max(extent, pose.r.cwiseAbs().maxCoeff() / Real(sys_.model().characteristic_length));
+  const Real floor = 16 * std::numeric_limits<Real>::epsilon() * extent;
   // The held factorization first (usually Φ_q at the previous step: no new
   // factorization where it contracts by 10x); a fresh one where it does not — near a
   // dead centre, where Φ_q turns fastest.
-  // Round-off of Φ in long double, scaled like the residual (16 units).
-  const Real floor = 16 * std::numeric_limits<Real>::epsilon();
   bool fresh = false;
   for (int extra = 0; extra < 4 && residual > floor; ++extra) {
     for (size_t k = 0; k < rows_.size(); ++k) rhs_[k] = -static_cast<double>(ext_phi_[rows_[k]]);
@@ -179,7 +183,7 @@ void NewtonSolver::RefineExtended(SystemState* s, SolveSummary* sum) {
     CalcPhiExtended(sys_, ext_poses_, ext_drivers_, s->angle_ref, &ext_phi_);
     const Real before = residual;
     residual = ExtendedResidual();
-    if (residual < 0.1L * before) continue;
+    if (residual < 0.1L * before || residual <= floor) continue;
     if (fresh) break;  // at round-off
     fresh = true;
     if (!Factorize(*s)) return;
@@ -197,4 +201,5 @@ void NewtonSolver::RefineExtended(SystemState* s, SolveSummary* sum) {
 }
 
 }  // namespace mechkin
+
 
