@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "analysis/error_bounds.hpp"
 #include "analysis/motion.hpp"
 #include "../test_files.hpp"
 
@@ -112,6 +113,16 @@ TEST(AccuracyTarget, RoundedGeometryMovesTheExactJerkNotTheSolve) {
   EXPECT_LT(worst.error[0], 1e-10);
   EXPECT_LT(worst.error[1], 1e-9);
   EXPECT_LT(worst.error[3], 1e-5);  // 4.3e-5 when solved in double
+}
+
+// The extended phase runs only where a double residual cannot give the derivatives
+// the tolerance and the row approaches a singular position (error_bounds.hpp).
+TEST(AccuracyTarget, ExtendedPrecisionOnlyWhereASingularPositionIsNear) {
+  EXPECT_TRUE(NeedsExtendedResidual(1e-10, 2000, 5.4, 3));    // the piston at t = 0.998
+  EXPECT_FALSE(NeedsExtendedResidual(1e-10, 74, 5.4, 3));     // the piston at t = 0.95: double suffices
+  EXPECT_FALSE(NeedsExtendedResidual(1e-10, 6500, 5450, 3));  // a geared chain: κ high all along
+  EXPECT_FALSE(NeedsExtendedResidual(1e-14, 30, 5, 3));       // tight tolerance on a regular row
+  EXPECT_FALSE(NeedsExtendedResidual(1e-6, 2000, 5, 3));      // loose tolerance: tol/κ² above the floor
 }
 
 }  // namespace
