@@ -111,8 +111,9 @@ SolveSummary NewtonSolver::Solve(const SolveOptions& options, SystemState* s, bo
   }
   sum.success = true;
   sum.message = "converged";
-  RefineToTarget(options, s, &sum);
+  // The extended phase supersedes the double one: its target lies below double round-off.
   if (options.extended_precision) RefineExtended(s, &sum);
+  else RefineToTarget(options, s, &sum);
   return sum;
 }
 

@@ -1527,6 +1527,17 @@ class SpecReader {
     auto [r, A] = Pose(b);
     return Vec3(A.transpose() * (global - r));
   }
+  JointFrame LocalFrame(BodyIndex b, const JointFrame& global) const {
+    auto [r, A] = Pose(b);
+    return ToLocal(global, r, A);
+  }
+  // A driver between body1 and body2 on one global frame, held in each body's axes.
+  void SetDriverFrames(Driver* drv, BodyIndex body1, BodyIndex body2, const JointFrame& global) const {
+    drv->body1 = body1;
+    drv->body2 = body2;
+    drv->frame1 = LocalFrame(body1, global);
+    drv->frame2 = LocalFrame(body2, global);
+  }
 
   // The geometry keys of a joint of known type, validated; adds the joint when
   // `name` is given (the joint's name, bodies and type were valid).
@@ -1649,14 +1660,11 @@ class SpecReader {
       joint.frame1.origin = LocalPoint(joint.body1, *p1);
       joint.frame2.origin = LocalPoint(joint.body2, *p2);
     } else {
-      auto [r1, A1] = Pose(joint.body1);
-      auto [r2, A2] = Pose(joint.body2);
-      joint.frame1 = ToLocal(global, r1, A1);
-      joint.frame2 = ToLocal(global, r2, A2);
+      joint.frame1 = LocalFrame(joint.body1, global);
+      joint.frame2 = LocalFrame(joint.body2, global);
       if (joint.type == JointType::Universal) {
         // body2 carries axis2 as its h (constraints.md §5, U row).
-        JointFrame g2 = MakeFrame(*origin, *axis2, *axis1);
-        joint.frame2 = ToLocal(g2, r2, A2);
+        joint.frame2 = LocalFrame(joint.body2, MakeFrame(*origin, *axis2, *axis1));
       }
     }
     joint_index_[joint.name] = static_cast<int>(model_.joints.size());
@@ -1746,12 +1754,7 @@ class SpecReader {
       return false;
     }
     const JointFrame global = MakeFrame(*p, *axis);
-    drv->body1 = *ab;
-    drv->body2 = *b;
-    auto [r1, A1] = Pose(*ab);
-    auto [r2, A2] = Pose(*b);
-    drv->frame1 = ToLocal(global, r1, A1);
-    drv->frame2 = ToLocal(global, r2, A2);
+    SetDriverFrames(drv, *ab, *b, global);
     return true;
   }
 
@@ -1782,12 +1785,7 @@ class SpecReader {
       return false;
     }
     const JointFrame global = vector ? MakeFrame(Vec3::Zero(), *about, *vector) : MakeFrame(Vec3::Zero(), *about);
-    drv->body1 = *b1;
-    drv->body2 = *b2;
-    auto [r1, A1] = Pose(*b1);
-    auto [r2, A2] = Pose(*b2);
-    drv->frame1 = ToLocal(global, r1, A1);
-    drv->frame2 = ToLocal(global, r2, A2);
+    SetDriverFrames(drv, *b1, *b2, global);
     return true;
   }
 
