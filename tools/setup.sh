@@ -1,15 +1,24 @@
 #!/usr/bin/env bash
 # Installs mechkin's Debian dependencies (apt-get only when one is missing),
 # configures and builds it, and installs the Python package for /usr/bin/python3.
-# Usage: tools/setup.sh [build-dir] [extra cmake args...]
+# Usage: tools/setup.sh [--with-tests] [build-dir] [extra cmake args...]
+#   default: only what the library, the CLI and the Python package need
+#            (tests and benchmarks are not configured);
+#   --with-tests: also the test, benchmark, browser and sanitizer toolchain
+#            (GoogleTest, Google Benchmark, pytest, Chromium, clang, Simbody, ...),
+#            and the build includes tests and benchmarks (tools/test.sh uses this).
 # Default build dir: build (Release). Runs as root on Debian 12; uses sudo otherwise.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
+with_tests=0
+if [ "${1:-}" = "--with-tests" ]; then with_tests=1; shift; fi
 build="${1:-build}"; shift || true
-pkgs=(g++ cmake ninja-build libeigen3-dev libceres-dev libsuitesparse-dev nlohmann-json3-dev libcli11-dev
-      libgtest-dev libgmock-dev libbenchmark-dev python3 python3-dev python3-jsonschema
-      pybind11-dev python3-numpy python3-pandas python3-pytest python3-pil python3-dask python3-distributed libjs-three chromium
-      clang libclang-rt-14-dev valgrind libsimbody-dev)
+main_pkgs=(g++ cmake ninja-build libeigen3-dev libceres-dev libsuitesparse-dev nlohmann-json3-dev libcli11-dev
+           python3 python3-dev pybind11-dev python3-numpy python3-pandas libjs-three)
+test_pkgs=(libgtest-dev libgmock-dev libbenchmark-dev python3-jsonschema python3-pytest python3-pil
+           python3-dask python3-distributed chromium clang libclang-rt-14-dev libsimbody-dev)
+pkgs=("${main_pkgs[@]}")
+[ "$with_tests" -eq 1 ] && pkgs+=("${test_pkgs[@]}")
 SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
 missing=()
 for p in "${pkgs[@]}"; do
@@ -21,7 +30,12 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 cd "$here"
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+if [ "$with_tests" -eq 1 ]; then
+  suite=(-DMECHKIN_BUILD_TESTS=ON -DMECHKIN_BUILD_BENCHMARKS=ON)
+else
+  suite=(-DMECHKIN_BUILD_TESTS=OFF -DMECHKIN_BUILD_BENCHMARKS=OFF)
+fi
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${suite[@]}" "$@" >/dev/null
 cmake --build "$build" -j"$(nproc)"
 # The Python package into /usr/bin/python3's site-packages
 # (/usr/local/lib/python3.11/dist-packages on Debian 12).
