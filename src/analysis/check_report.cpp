@@ -35,13 +35,14 @@ struct JointPoint {
   bool has_axis;
 };
 
-// The joints (and distance-link ends) attached to body b, with their design points.
-std::vector<JointPoint> JointPointsOf(const Model& m, BodyIndex b) {
+// The joints (and distance-link ends) attached to body b, with their design
+// points; joints_on[b] lists b's joints in file order.
+std::vector<JointPoint> JointPointsOf(const Model& m, BodyIndex b, const std::vector<std::vector<size_t>>& joints_on) {
   std::vector<JointPoint> out;
   const Body& body = m.bodies[b];
   const Mat3 A = CalcA(body.euler);
-  for (const Joint& j : m.joints) {
-    if (j.body1 != b && j.body2 != b) continue;
+  for (size_t index : joints_on[b]) {
+    const Joint& j = m.joints[index];
     const JointFrame& f = j.body1 == b ? j.frame1 : j.frame2;
     const bool axis = j.type != JointType::Spherical && j.type != JointType::Distance;
     out.push_back({j.name, body.position + A * f.origin, A * f.h, axis});
@@ -52,8 +53,14 @@ std::vector<JointPoint> JointPointsOf(const Model& m, BodyIndex b) {
 // Link lengths and axis angles per body (at most 8 joints a body: 28 pairs).
 void AddGeometry(const Model& m, CheckReport* r) {
   const double len = 1 / m.units.length_to_si, ang = 1 / m.units.angle_to_si;
+  std::vector<std::vector<size_t>> joints_on(m.num_bodies());
+  for (size_t j = 0; j < m.joints.size(); ++j) {
+    const Joint& jt = m.joints[j];
+    if (jt.body1 != kGround) joints_on[jt.body1].push_back(j);
+    if (jt.body2 != kGround && jt.body2 != jt.body1) joints_on[jt.body2].push_back(j);
+  }
   for (int b = 0; b < m.num_bodies(); ++b) {
-    const std::vector<JointPoint> pts = JointPointsOf(m, b);
+    const std::vector<JointPoint> pts = JointPointsOf(m, b, joints_on);
     if (pts.size() < 2) continue;
     BodyGeometry g;
     g.body = m.bodies[b].name;

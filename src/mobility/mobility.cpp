@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <functional>
+#include <map>
 #include <cmath>
 #include <random>
 #include <set>
@@ -189,37 +190,43 @@ Eigen::MatrixXd DrivingRank(const Model& model, const ConstraintSystem& full, co
 }
 
 // The rows a rigid motion of `group` must not violate: the joints and drivers
-// touching the group, and the output points on the group's bodies. T maps the
-// group twist to q̇.
+// touching the group, and the output points on the group's bodies. T (6·|g| × 6,
+// block k for body g[k]) maps the group twist to the group's part of q̇; the rest
+// of q̇ is zero. outputs_on[b]: the indices of the outputs with a point on body b.
 Eigen::MatrixXd GroupConstraints(const Model& model, const std::vector<int>& g, const SystemState& state,
-                                 const Eigen::SparseMatrix<double>& Jf, Eigen::MatrixXd* T_out) {
-  const int n = model.num_bodies();
+                                 const Eigen::SparseMatrix<double>& Jf,
+                                 const std::vector<std::vector<size_t>>& outputs_on, Eigen::MatrixXd* T_out) {
   const double L = model.characteristic_length;
   Eigen::MatrixXd& T = *T_out;
   // T maps a group twist (ω global, v at the global origin; scaled by L) to q̇ (scaled).
-  T = Eigen::MatrixXd::Zero(6 * n, 6);
-  for (int b : g) {
-    const Vec3 r = state.bodies[b].r[0];
-    const Mat3& A = state.bodies[b].A;
-    T.block(6 * b, 0, 3, 3) = -Tilde(r) / L;  // ṙ = v + ω × r
-    T.block(6 * b, 3, 3, 3) = Mat3::Identity();
-    T.block(6 * b + 3, 0, 3, 3) = A.transpose();
+  T = Eigen::MatrixXd::Zero(6 * static_cast<int>(g.size()), 6);
+  for (size_t k = 0; k < g.size(); ++k) {
+    const Vec3 r = state.bodies[g[k]].r[0];
+    const Mat3& A = state.bodies[g[k]].A;
+    T.block(6 * k, 0, 3, 3) = -Tilde(r) / L;  // ṙ = v + ω × r
+    T.block(6 * k, 3, 3, 3) = Mat3::Identity();
+    T.block(6 * k + 3, 0, 3, 3) = A.transpose();
   }
   // Only rows with an entry in the group's columns can be violated; Jf is
-  // column-major, so S = Jf(:, group) · T(group, :) is gathered column by column.
+  // column-major, so S = Jf(:, group) · T is gathered column by column.
   std::vector<Eigen::RowVectorXd> rows;
   std::unordered_map<int, size_t> slot;  // row of Jf → index in rows
-  for (int b : g)
-    for (int c = 6 * b; c < 6 * b + 6; ++c)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(Jf, c); it; ++it) {
+  for (size_t k = 0; k < g.size(); ++k)
+    for (int c = 0; c < 6; ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(Jf, 6 * g[k] + c); it; ++it) {
         auto [pos, added] = slot.emplace(static_cast<int>(it.row()), rows.size());
         if (added) rows.push_back(Eigen::RowVectorXd::Zero(6));
-        rows[pos->second] += it.value() * T.row(c);
+        rows[pos->second] += it.value() * T.row(6 * static_cast<int>(k) + c);
       }
-  // Output points on the group's bodies must not move.
-  for (const auto& o : model.outputs)
+  // Output points on the group's bodies must not move (in the file's output order).
+  std::vector<size_t> touching;
+  for (int b : g) touching.insert(touching.end(), outputs_on[b].begin(), outputs_on[b].end());
+  std::sort(touching.begin(), touching.end());
+  touching.erase(std::unique(touching.begin(), touching.end()), touching.end());
+  for (size_t oi : touching) {
+    const Output& o = model.outputs[oi];
     for (BodyIndex ob : {o.body1, o.body2})
-      if (ob != kGround && std::find(g.begin(), g.end(), ob) != g.end() && o.kind != OutputKind::JointCoordinate) {
+      if (ob != kGround && std::find(g.begin(), g.end(), ob) != g.end()) {
         const Vec3 s = ob == o.body1 ? o.point1 : o.point2;
         const Vec3 P = state.bodies[ob].r[0] + state.bodies[ob].A * s;
         Eigen::MatrixXd Vp(3, 6);
@@ -227,14 +234,82 @@ Eigen::MatrixXd GroupConstraints(const Model& model, const std::vector<int>& g, 
         Vp.rightCols(3) = Mat3::Identity();
         for (int k = 0; k < 3; ++k) rows.push_back(Vp.row(k));
       }
+  }
   Eigen::MatrixXd S(rows.size(), 6);
   for (size_t k = 0; k < rows.size(); ++k) S.row(k) = rows[k];
   return S;
 }
 
+// A direction of q̇ that moves only a few bodies: body → its 6 entries, by body.
+using SparseMotion = std::map<int, Eigen::Matrix<double, 6, 1>>;
+
+double Dot(const SparseMotion& a, const SparseMotion& b) {
+  double sum = 0;
+  for (const auto& [body, x] : a) {
+    const auto it = b.find(body);
+    if (it != b.end()) sum += x.dot(it->second);
+  }
+  return sum;
+}
+
+double Norm(const SparseMotion& a) { return std::sqrt(Dot(a, a)); }
+
+// The idle motions found so far, orthonormal, and for each body the ones that move it.
+struct IdleBasis {
+  std::vector<SparseMotion> motions;
+  std::vector<std::vector<size_t>> moving;  // body → indices into motions
+
+  // Two passes of Gram–Schmidt of v against the basis in the order it was built.
+  // A basis motion sharing no body with v (as v is at its turn) leaves v unchanged,
+  // so only those that share one are visited; v grows onto the bodies they move.
+  void Orthogonalize(SparseMotion* v) const {
+    for (int pass = 0; pass < 2; ++pass) {
+      std::set<size_t> pending;
+      for (const auto& entry : *v) pending.insert(moving[entry.first].begin(), moving[entry.first].end());
+      while (!pending.empty()) {
+        const size_t k = *pending.begin();
+        pending.erase(pending.begin());
+        const double c = Dot(motions[k], *v);
+        for (const auto& [body, x] : motions[k]) {
+          auto [it, added] = v->emplace(body, Eigen::Matrix<double, 6, 1>::Zero());
+          it->second -= c * x;
+          if (added)
+            for (size_t later : moving[body])
+              if (later > k) pending.insert(later);
+        }
+      }
+    }
+  }
+
+  void Add(SparseMotion v) {
+    const double norm = Norm(v);
+    for (auto& entry : v) {
+      entry.second /= norm;
+      moving[entry.first].push_back(motions.size());
+    }
+    motions.push_back(std::move(v));
+  }
+};
+
+IdleFreedom DescribeIdle(const Model& model, const std::vector<int>& g, const Vec3& w) {
+  IdleFreedom f;
+  f.axis = w.norm() > 0 ? Vec3(w.normalized()) : Vec3::Zero();
+  for (int b : g) f.body += (f.body.empty() ? "" : "+") + model.bodies[b].name;
+  f.description =
+      (g.size() == 1 ? "body `" + f.body + "`" : "bodies `" + f.body + "` together") +
+      (w.norm() > 0
+           ? (g.size() == 1 ? " spins about its own axis " : " spin about their common axis ") + VecStr(f.axis)
+           : " slide") +
+      " without moving anything else; model " +
+      (g.size() == 1 ? "the link as a `distance` joint instead of a body" : "the leg with fewer bodies or lock the spin") +
+      " if nothing but its length matters";
+  return f;
+}
+
 // Idle freedoms: a body, or two bodies joined by a joint, moving together as one
 // rigid group while everything else is still, no driver coordinate and no output
-// point moves.
+// point moves. Each group's work touches only its bodies' columns and the basis
+// motions sharing a body with it, so the pass is linear in the bodies and joints.
 void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen::SparseMatrix<double>& Jf,
                       MobilityReport* rep_ptr) {
   MobilityReport& rep = *rep_ptr;
@@ -246,35 +321,29 @@ void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen:
       groups.push_back({std::min(jt.body1, jt.body2), std::max(jt.body1, jt.body2)});
   std::sort(groups.begin(), groups.end());
   groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
-  std::vector<Eigen::VectorXd> idle_motions;
+  std::vector<std::vector<size_t>> outputs_on(n);
+  for (size_t oi = 0; oi < model.outputs.size(); ++oi) {
+    const Output& o = model.outputs[oi];
+    if (o.kind == OutputKind::JointCoordinate) continue;
+    for (BodyIndex ob : {o.body1, o.body2})
+      if (ob != kGround) outputs_on[ob].push_back(oi);
+  }
+  IdleBasis idle;
+  idle.moving.resize(n);
   for (const auto& g : groups) {
     Eigen::MatrixXd T;
-    const Eigen::MatrixXd S = GroupConstraints(model, g, state, Jf, &T);
+    const Eigen::MatrixXd S = GroupConstraints(model, g, state, Jf, outputs_on, &T);
     const RankInfo gi = CalcRank(S);
     for (int c = 0; c < gi.null_basis.cols(); ++c) {
-      const Eigen::VectorXd motion = T * gi.null_basis.col(c);
-      // New direction only if independent of the idle motions found so far
-      // (idle_motions is kept orthonormal).
-      Eigen::VectorXd v = motion;
-      for (int pass = 0; pass < 2; ++pass)
-        for (const auto& q : idle_motions) v -= q.dot(v) * q;
-      if (v.norm() <= 1e-6 * motion.norm()) continue;
-      idle_motions.push_back(v.normalized());
-      IdleFreedom f;
-      const Vec3 w = gi.null_basis.col(c).head<3>();
-      f.axis = w.norm() > 0 ? Vec3(w.normalized()) : Vec3::Zero();
-      std::string names;
-      for (int b : g) f.body += (f.body.empty() ? "" : "+") + model.bodies[b].name;
-      f.description =
-          (g.size() == 1 ? "body `" + f.body + "`" : "bodies `" + f.body + "` together") +
-          (w.norm() > 0
-               ? (g.size() == 1 ? " spins about its own axis " : " spin about their common axis ") + VecStr(f.axis)
-               : " slide") +
-          " without moving anything else; model " +
-          (g.size() == 1 ? "the link as a `distance` joint instead of a body"
-                         : "the leg with fewer bodies or lock the spin") +
-          " if nothing but its length matters";
-      rep.idle.push_back(f);
+      const Eigen::VectorXd local = T * gi.null_basis.col(c);
+      SparseMotion motion;
+      for (size_t k = 0; k < g.size(); ++k) motion[g[k]] = local.segment<6>(6 * k);
+      // New direction only if independent of the idle motions found so far.
+      SparseMotion v = motion;
+      idle.Orthogonalize(&v);
+      if (Norm(v) <= 1e-6 * Norm(motion)) continue;
+      idle.Add(std::move(v));
+      rep.idle.push_back(DescribeIdle(model, g, gi.null_basis.col(c).head<3>()));
     }
   }
 }

@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "model/frames.hpp"
+#include "model/stray_points.hpp"
 
 namespace mechkin {
 
@@ -1398,38 +1399,22 @@ class SpecReader {
   // A joint point far from every other joint point of both its bodies (1352 typed for
   // 135.2): over 5 times the median of the other joints' link lengths.
   void WarnStrayJointPoints() {
-    struct Point { BodyIndex body; Vec3 p; size_t joint; };
-    std::vector<Point> pts;
+    std::vector<JointEnds> ends(model_.joints.size());
     for (size_t j = 0; j < model_.joints.size(); ++j) {
       const Joint& jt = model_.joints[j];
       for (int side = 0; side < 2; ++side) {
         const BodyIndex b = side ? jt.body2 : jt.body1;
         auto [r, A] = Pose(b);
-        pts.push_back({b, r + A * (side ? jt.frame2.origin : jt.frame1.origin), j});
+        ends[j].body[side] = b;
+        ends[j].point[side] = r + A * (side ? jt.frame2.origin : jt.frame1.origin);
       }
     }
-    for (size_t j = 0; j < model_.joints.size(); ++j) {
-      std::vector<double> others;  // link lengths between joint points not of joint j
-      double nearest[2] = {-1, -1};
-      for (size_t a = 0; a < pts.size(); ++a)
-        for (size_t b = a + 1; b < pts.size(); ++b) {
-          if (pts[a].body != pts[b].body || pts[a].joint == pts[b].joint) continue;
-          const double d = (pts[a].p - pts[b].p).norm();
-          if (pts[a].joint != j && pts[b].joint != j) { others.push_back(d); continue; }
-          const int side = pts[a].joint == j ? static_cast<int>(a % 2) : static_cast<int>(b % 2);
-          nearest[side] = nearest[side] < 0 ? d : std::min(nearest[side], d);
-        }
-      if (others.size() < 2 || nearest[0] < 0 || nearest[1] < 0) continue;
-      std::nth_element(others.begin(), others.begin() + others.size() / 2, others.end());
-      const double typical = others[others.size() / 2];
-      const double near = std::min(nearest[0], nearest[1]);
-      if (typical > 0 && near > 5 * typical)
-        rd_.Warn("/joints/" + std::to_string(j), "joint '" + model_.joints[j].name + "' lies " +
-                                                     FormatTime(near / typical) +
-                                                     " times the other links' typical length from every other "
-                                                     "joint of both its bodies",
-                 "check its coordinates (a slipped digit or unit)");
-    }
+    for (const StrayJointPoint& s : FindStrayJointPoints(ends))
+      rd_.Warn("/joints/" + std::to_string(s.joint), "joint '" + model_.joints[s.joint].name + "' lies " +
+                                                         FormatTime(s.nearest / s.typical) +
+                                                         " times the other links' typical length from every other "
+                                                         "joint of both its bodies",
+               "check its coordinates (a slipped digit or unit)");
   }
 
   // A distance link 1000 times longer or shorter than the mechanism: a slipped unit or digit.

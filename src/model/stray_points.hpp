@@ -1,0 +1,41 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "math/rotation.hpp"
+
+namespace mechkin {
+
+/// One joint's two ends for the stray-joint-point guard: the body on each side
+/// (any integer id; equal ids mean the same body) and that side's joint point in
+/// global coordinates at the design pose.
+struct JointEnds {
+  int body[2] = {0, 0};
+  Vec3 point[2] = {Vec3::Zero(), Vec3::Zero()};
+};
+
+/// A joint whose points lie far from every other joint point of both its bodies.
+struct StrayJointPoint {
+  std::size_t joint = 0;  ///< index into the input
+  double nearest = 0;     ///< distance from the joint to the nearest other joint point of its bodies
+  double typical = 0;     ///< median of the link lengths not involving the joint
+};
+
+/// The stray joint points (a slipped digit such as 1352 typed for 135.2), in joint order.
+///
+/// A link length is the distance between two points of different joints on the
+/// same body. Joint j is stray when each of its two ends shares a body with some
+/// other joint's point, at least two link lengths do not involve j, the median of
+/// those (the element at index n/2 of the n sorted lengths) is positive, and the
+/// nearest other joint point of either end is more than 5 times that median.
+///
+/// Cost: O(P log P) time and O(P + joints) memory for P link lengths (P is the sum
+/// over bodies of k(k-1)/2 for k joint points on the body: linear in the joints
+/// when every body carries a bounded number of joints, quadratic in the joints of
+/// one body that carries many, such as a ground holding every pivot). The median
+/// excluding a joint is found from the one sorted list of all lengths by a binary
+/// search that discounts the joint's own lengths, not by a sort per joint.
+std::vector<StrayJointPoint> FindStrayJointPoints(const std::vector<JointEnds>& joints);
+
+}  // namespace mechkin
