@@ -5,17 +5,25 @@
 #include <ostream>
 #include <string>
 
+#include "analysis/run_request.hpp"
+
 namespace mechkin {
 
 struct ViewOptions {
   std::string file;
   std::string output;          // -o; default: the file's stem + .html
   std::string gltf;            // --gltf: .glb or .gltf
-  int order = 2;
-  double tolerance = 1e-10;
-  std::string solver = "newton";
+  RunRequest request = DefaultViewRequest();  // --order (default 2), --tol, --solver
   int max_frames = 2000;
   bool forces = false, no_forces = false;
+  /// `request` with the forces choice.
+  RunRequest Request() const;
+  static RunRequest DefaultViewRequest() {
+    RunRequest r;
+    r.order = 2;  // the plots: positions, velocities, accelerations
+    r.keep_step_diagnostics = false;
+    return r;
+  }
 };
 
 void SetupViewCommand(CLI::App& app, ViewOptions* options);
