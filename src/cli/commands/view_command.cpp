@@ -17,6 +17,9 @@ void SetupViewCommand(CLI::App& app, ViewOptions* o) {
   cmd->add_option("--max-frames", o->max_frames, "Rows shown in the page (longer runs are decimated)")->check(CLI::Range(2, 1000000));
   cmd->add_flag("--forces", o->forces, "Also compute efforts and reactions (default when the file has inertia or loads)");
   cmd->add_flag("--no-forces", o->no_forces, "Kinematics only");
+  cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
+  cmd->add_option("--up", o->up, "Axis drawn upwards when the file has no gravity (default y)")->check(CLI::IsMember({"x", "y", "z"}));
+  cmd->add_option("--plots", o->plots, "Plotted columns: names separated by ',' within a plot, ';' between plots");
 }
 
 namespace {
@@ -30,7 +33,9 @@ std::string DefaultPage(const std::string& file) {
 }  // namespace
 
 int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
-  const std::optional<Model> loaded = LoadForCommand(o.file, err);
+  ParameterOverrides overrides;
+  if (!ParseOverrides(o.set, &overrides, err)) return 2;
+  const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides);
   if (!loaded) return 1;
   const Model& model = *loaded;
   TableOptions t;
@@ -45,7 +50,12 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   if (motion.rows() == 0) return 1;  // nothing to show
   SceneOptions scene;
   scene.max_frames = o.max_frames;
+  scene.up = o.up == "x" ? Vec3::UnitX() : o.up == "z" ? Vec3::UnitZ() : Vec3::UnitY();
   std::string why;
+  if (!o.plots.empty() && !ParsePlots(motion, o.plots, &scene.plots, &why)) {
+    err << "mechkin view: " << why << "\n";
+    return 2;
+  }
   const std::string page = o.output.empty() ? DefaultPage(o.file) : o.output;
   if (!WriteViewerHtml(model, motion, scene, page, &why)) {
     err << "mechkin view: " << why << "\n";

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace mechkin {
 
@@ -16,6 +17,9 @@ struct ViewOptions {
   std::string solver = "newton";
   int max_frames = 2000;
   bool forces = false, no_forces = false;
+  std::vector<std::string> set;  // --set NAME=NUMBER, as `run`
+  std::string up = "y";          // --up x|y|z when the file has no gravity
+  std::string plots;             // --plots "a,b;c": panels of columns
 };
 
 void SetupViewCommand(CLI::App& app, ViewOptions* options);
