@@ -185,3 +185,263 @@ def test_long_runs_are_decimated(cli, tmp_path):
     assert page.stat().st_size < 6_000_000
     attrs, _ = browser.dump_dom(page, "t=50")
     assert attrs.get("data-ready") == "1" and "data-errors" not in attrs
+
+
+# --- issue 27: up axis, views, autoplay, plots, exports, paths ---------------------------------
+
+BIG = (1400, 900)
+VIEW3D = (slice(40, 890), slice(0, 835))  # the 3D view of a 1400×900 page (left of the 560 px plots)
+
+
+def colour_masks(img):
+    """Where the suspension's lower arm (#1f77b4, blue) and upper arm (#d62728, red) are drawn."""
+    r, g, b = img[..., 0], img[..., 1], img[..., 2]
+    return (b > r + 40) & (b > g + 10), (r > g + 60) & (r > b + 60)
+
+
+def suspension(tmp_path, gravity=None):
+    doc = json.load(open(os.path.join(ROOT, "mechanisms", "double-wishbone-suspension.json")))
+    if gravity is not None:
+        doc["gravity"] = gravity
+    src = tmp_path / "susp.json"
+    src.write_text(json.dumps(doc))
+    return src
+
+
+def page_data(page):
+    import re
+    text = open(page).read()
+    return json.loads(re.search(r"window\.MECHKIN_DATA=(.*?);</script>", text).group(1))
+
+
+@pytest.mark.parametrize("how", ["gravity", "flag"])
+def test_z_up_mechanism_is_drawn_upright(cli, tmp_path, how):
+    # The suspension is drawn z-up (x forward, y outboard): with gravity −z in the file,
+    # or with --up z. Its upper arm (z ≈ 435 mm) is then above its lower arm (z ≈ 140 mm)
+    # on the screen, and it is the top body: the top rows of the mechanism are red.
+    src = suspension(tmp_path, [0, 0, -9810] if how == "gravity" else None)
+    page = tmp_path / "z.html"
+    assert view(cli, str(src), page, *(["--up", "z"] if how == "flag" else [])).returncode == 0
+    assert page_data(page)["up"] == [0, 0, 1]
+    img = pixels(browser.screenshot(page, tmp_path / "z.png", "t=0.5", size=BIG))[VIEW3D]
+    blue, red = colour_masks(img)
+    rows_b, rows_r = np.nonzero(blue)[0], np.nonzero(red)[0]
+    assert len(rows_b) > 2000 and len(rows_r) > 2000
+    assert rows_r.mean() + 150 < rows_b.mean(), (rows_r.mean(), rows_b.mean())
+    mech = np.nonzero((np.abs(img - img[5, 5]).sum(axis=2) > 60).any(axis=1))[0]
+    top = slice(mech.min(), mech.min() + 40)
+    assert red[top].sum() > 5 * blue[top].sum()
+
+
+def test_without_gravity_or_flag_y_is_up(cli, tmp_path):
+    # Today's behaviour for files without gravity: y up, so the suspension (z up in
+    # its own axes) lies on its side: the arms are not one above the other.
+    page = tmp_path / "y.html"
+    assert view(cli, str(suspension(tmp_path)), page).returncode == 0
+    assert page_data(page)["up"] == [0, 1, 0]
+    img = pixels(browser.screenshot(page, tmp_path / "y.png", "t=0.5", size=BIG))[VIEW3D]
+    blue, red = colour_masks(img)
+    assert not np.nonzero(red)[0].mean() + 150 < np.nonzero(blue)[0].mean()
+
+
+def test_standard_views_change_the_picture(cli, tmp_path):
+    page = tmp_path / "v.html"
+    assert view(cli, os.path.join(ROOT, "mechanisms", "stewart-platform.json"), page, "--up", "z").returncode == 0
+    shots = {}
+    for v in ("front", "side", "top", "iso"):
+        attrs, _ = browser.dump_dom(page, "t=0.3&view=" + v)
+        assert attrs.get("data-ready") == "1" and "data-errors" not in attrs
+        shots[v] = pixels(browser.screenshot(page, tmp_path / (v + ".png"), "t=0.3&view=" + v, size=BIG))[VIEW3D]
+    names = list(shots)
+    for i in range(len(names)):
+        for j in range(i + 1, len(names)):
+            changed = (np.abs(shots[names[i]] - shots[names[j]]).sum(axis=2) > 60).sum()
+            assert changed > 5000, (names[i], names[j], changed)
+    ortho = pixels(browser.screenshot(page, tmp_path / "o.png", "t=0.3&view=iso&ortho=1", size=BIG))[VIEW3D]
+    assert (np.abs(ortho - shots["iso"]).sum(axis=2) > 60).sum() > 2000
+
+
+def test_opens_playing_unless_paused(cli, tmp_path):
+    page = tmp_path / "p.html"
+    assert view(cli, os.path.join(ROOT, "mechanisms", "planar-four-bar.json"), page).returncode == 0
+    early = pixels(browser.screenshot(page, tmp_path / "a.png", "", size=BIG, budget=900))[VIEW3D]
+    late = pixels(browser.screenshot(page, tmp_path / "b.png", "", size=BIG, budget=1300))[VIEW3D]
+    assert (np.abs(early - late).sum(axis=2) > 60).sum() > 500
+    still = [pixels(browser.screenshot(page, tmp_path / ("s%d.png" % k), "paused", size=BIG, budget=b))[VIEW3D]
+             for k, b in enumerate((900, 1300))]
+    assert (np.abs(still[0] - still[1]).sum(axis=2) > 60).sum() == 0
+
+
+def test_planar_mechanism_opens_orthographic_along_its_normal(cli, tmp_path):
+    # The four-bar moves in z = 0: the page sees the plane's normal and opens square on,
+    # orthographic; its pivots (0, 0) and (100, 0) mm are then level on the screen.
+    page = tmp_path / "f.html"
+    assert view(cli, os.path.join(ROOT, "mechanisms", "planar-four-bar.json"), page).returncode == 0
+    data = page_data(page)
+    assert np.allclose(np.abs(data["planar"]), [0, 0, 1], atol=1e-9)
+    attrs, dom = browser.dump_dom(page, "t=0")
+    assert attrs.get("data-camera") == "orthographic"
+    attrs, _ = browser.dump_dom(page, "t=0&ortho=0")
+    assert attrs.get("data-camera") == "perspective"
+    spatial = page_data_of(cli, tmp_path, "bennett-linkage")
+    assert spatial["planar"] is None
+
+
+def page_data_of(cli, tmp_path, name, *args):
+    page = tmp_path / (name + ".html")
+    view(cli, os.path.join(ROOT, "mechanisms", name + ".json"), page, *args)
+    return page_data(page)
+
+
+@pytest.mark.parametrize("name,up", [("double-wishbone-suspension", "z"), ("stewart-platform", "z"), ("planar-four-bar", "y")])
+def test_fit_frames_the_whole_motion(cli, tmp_path, name, up):
+    # After the fit on open, the mechanism drawn over its run (four times, union of the
+    # drawn boxes) covers at least a third of the 3D view, and no part leaves it.
+    page = tmp_path / "m.html"
+    assert view(cli, os.path.join(ROOT, "mechanisms", name + ".json"), page, "--up", up).returncode == 0
+    union = None
+    for t in ("0", "0.25", "0.5", "0.75"):
+        img = pixels(browser.screenshot(page, tmp_path / "m.png", "t=" + t, size=BIG))[VIEW3D]
+        sat = img.max(axis=2) - img.min(axis=2) > 50  # the bodies' colours (not the grey grid)
+        dark = img.max(axis=2) < 110                   # joints, links, paths
+        drawn = sat | dark
+        union = drawn if union is None else union | drawn
+    rows, cols = np.nonzero(union)
+    h, w = union.shape
+    area = (rows.max() - rows.min()) * (cols.max() - cols.min())
+    assert area > h * w / 3, (area, h * w)
+    assert rows.min() > 2 and cols.min() > 2 and rows.max() < h - 3 and cols.max() < w - 3
+
+
+def svg_texts(dom):
+    import re
+    return re.findall(r"<text[^>]*>([^<]*)</text>", dom)
+
+
+def test_plots_default_to_the_outputs(cli, tmp_path):
+    import re
+    page = tmp_path / "d.html"
+    assert view(cli, os.path.join(ROOT, "mechanisms", "double-wishbone-suspension.json"), page, "--up", "z").returncode == 0
+    attrs, dom = browser.dump_dom(page, "t=0.25", size=BIG)
+    assert attrs.get("data-ready") == "1" and "data-errors" not in attrs
+    # Two panels: the angles (deg) and the wheel centre (mm), each its own axis.
+    panels = re.findall(r'<svg[^>]*class="plot".*?</svg>', dom, re.S)
+    assert len(panels) == 2
+    assert re.findall(r'data-name="([^"]+)"', panels[0]) == ["camber", "toe"]
+    assert re.findall(r'data-name="([^"]+)"', panels[1]) == ["wheel_centre.x", "wheel_centre.y", "wheel_centre.z"]
+    for p, unit in zip(panels, ("[deg]", "[mm]")):
+        texts = svg_texts(p)
+        assert unit in texts and "t [s]" in texts
+        ticks = [float(t) for t in re.findall(r'class="tick"[^>]*>([^<]*)<', p)]
+        assert len(ticks) >= 8
+        assert {0.0, 0.2, 0.4, 0.6, 0.8, 1.0} <= set(ticks)  # the time axis, 0…1 s
+        assert len(re.findall(r'class="grid"', p)) == len(ticks)
+    # The legend names each series with its unit and its value at the cursor (t = 0.25 s).
+    legends = re.findall(r'class="legend">([^<]*)<tspan[^>]*>([^<]*)</tspan>', dom)
+    assert [name for name, _ in legends][:2] == ["camber [deg]", "toe [deg]"]
+    table = tmp_path / "d.csv"
+    subprocess.run([cli, "run", os.path.join(ROOT, "mechanisms", "double-wishbone-suspension.json"), "-o", str(table)],
+                   check=True, capture_output=True)
+    rows = list(csv.reader(open(table)))
+    head = [h.split(" [")[0] for h in rows[0]]
+    row = next(r for r in rows[1:] if abs(float(r[0]) - 0.25) < 1e-9)
+    camber = float(row[head.index("camber")])
+    assert abs(float(legends[0][1].replace("=", "")) - camber) <= 1e-4 * max(1, abs(camber))
+
+
+def test_drivers_then_body_pose_when_no_outputs(cli, tmp_path):
+    doc = json.load(open(os.path.join(ROOT, "mechanisms", "planar-four-bar.json")))
+    doc["outputs"] = []
+    src = tmp_path / "no-out.json"
+    src.write_text(json.dumps(doc))
+    page = tmp_path / "n.html"
+    view(cli, str(src), page)
+    plots = page_data(page)["plots"]
+    # No outputs, no driver columns without forces: the crank's (the first moving body's) position.
+    assert plots == [["crank.x", "crank.y"]]
+
+
+def test_plots_option_chooses_the_panels(cli, tmp_path):
+    import re
+    src = os.path.join(ROOT, "mechanisms", "planar-four-bar.json")
+    page = tmp_path / "c.html"
+    assert view(cli, src, page, "--plots", "coupler_point.x,coupler_point.y;rocker_angle_t").returncode == 0
+    attrs, dom = browser.dump_dom(page, "t=0.2", size=BIG)
+    panels = re.findall(r'<svg[^>]*class="plot".*?</svg>', dom, re.S)
+    assert [re.findall(r'data-name="([^"]+)"', p) for p in panels] == [["coupler_point.x", "coupler_point.y"], ["rocker_angle_t"]]
+    bad = subprocess.run([cli, "view", src, "-o", str(tmp_path / "bad.html"), "--plots", "rocker_angle;nope"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2
+    assert "no column 'nope'" in bad.stderr and "rocker_angle" in bad.stderr and "coupler_point.x" in bad.stderr
+    assert not (tmp_path / "bad.html").exists()
+
+
+def test_svg_and_csv_export(cli, tmp_path):
+    import html
+    import re
+    import xml.etree.ElementTree as ET
+    page = tmp_path / "e.html"
+    src = os.path.join(ROOT, "mechanisms", "planar-four-bar.json")
+    assert view(cli, src, page).returncode == 0
+    _, dom = browser.dump_dom(page, "t=0.2&export=1", size=BIG)
+    text = html.unescape(re.search(r'<pre id="export">(.*?)</pre>', dom, re.S).group(1))
+    root = ET.fromstring(text.split("?>", 1)[1])  # a standalone SVG document
+    ns = "{http://www.w3.org/2000/svg}"
+    assert root.tag == ns + "svg"
+    series = [p for p in root.iter(ns + "path") if p.get("class") == "series"]
+    assert [p.get("data-name") for p in series] == ["coupler_point.x", "coupler_point.y"]
+    assert len(series[0].get("d").split("L")) == len(page_data(page)["times"])
+    assert "coupler_point.x [mm]" in [t.text for t in root.iter(ns + "text")]
+    _, dom = browser.dump_dom(page, "t=0.2&export=csv", size=BIG)
+    rows = list(csv.reader(html.unescape(re.search(r'<pre id="export">(.*?)</pre>', dom, re.S).group(1)).splitlines()))
+    table = tmp_path / "f.csv"
+    subprocess.run([cli, "run", src, "-o", str(table)], check=True, capture_output=True)
+    ref = list(csv.reader(open(table)))
+    assert rows[0][0] == "t [s]" and "rocker_angle [deg]" in rows[0]
+    assert len(rows) == len(ref)  # 73 rows: not decimated
+    k, j = rows[0].index("rocker_angle [deg]"), ref[0].index("rocker_angle [deg]")
+    assert max(abs(float(a[k]) - float(b[j])) for a, b in zip(rows[1:], ref[1:])) < 1e-7
+
+
+def test_partial_run_stop_is_marked_on_every_plot(cli, tmp_path):
+    import re
+    page = tmp_path / "dead.html"
+    view(cli, os.path.join(ROOT, "tests", "data", "slider-crank-equal-links.json"), page)
+    data = page_data(page)
+    kinds = [m["kind"] for m in data["marks"]]
+    assert "stop" in kinds and "singular" in kinds
+    _, dom = browser.dump_dom(page, size=BIG)
+    panels = re.findall(r'<svg[^>]*class="plot".*?</svg>', dom, re.S)
+    assert panels and all('class="mark mark-singular"' in p for p in panels)
+
+
+def test_output_point_paths_are_drawn(cli, tmp_path):
+    # The coupler curve: the four-bar with and without its point output differs in the
+    # 3D view by a closed curve's pixels.
+    doc = json.load(open(os.path.join(ROOT, "mechanisms", "planar-four-bar.json")))
+    shots = []
+    for keep in (True, False):
+        d = json.loads(json.dumps(doc))
+        if not keep:
+            d["outputs"] = [o for o in d["outputs"] if o["type"] != "point"]
+            d["outputs"].append({"name": "p", "type": "distance", "body1": "coupler", "point1": doc["outputs"][1]["point"],
+                                 "body2": "ground", "point2": [0, 0, 0]})
+        src = tmp_path / ("p%d.json" % keep)
+        src.write_text(json.dumps(d))
+        page = tmp_path / ("p%d.html" % keep)
+        view(cli, str(src), page)
+        shots.append(pixels(browser.screenshot(page, tmp_path / ("p%d.png" % keep), "t=0&paused", size=BIG))[VIEW3D])
+    assert (np.abs(shots[0] - shots[1]).sum(axis=2) > 30).sum() > 300
+
+
+def test_set_changes_the_picture(cli, tmp_path):
+    # `view --set` as `run --set`: another crank length, another picture (and page data).
+    src = os.path.join(ROOT, "mechanisms", "parametric-four-bar.json")
+    params = json.load(open(src)).get("parameters", {})
+    name, value = "a", params["a"]["value"]  # the crank's length
+    a, b = tmp_path / "a.html", tmp_path / "b.html"
+    assert view(cli, src, a).returncode == 0
+    assert view(cli, src, b, "--set", "%s=%r" % (name, value * 1.1)).returncode == 0
+    assert page_data(a)["bodies"][0]["poses"] != page_data(b)["bodies"][0]["poses"]
+    bad = subprocess.run([cli, "view", src, "-o", str(tmp_path / "c.html"), "--set", "nope"], capture_output=True, text=True)
+    assert bad.returncode == 2

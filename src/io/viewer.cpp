@@ -1,5 +1,6 @@
 #include "io/viewer.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -143,24 +144,177 @@ void WriteJoints(const Model& model, double L, Json* j) {
   j->Raw("]");
 }
 
+// Columns the page can plot: all but Euler parameters (the pose's rotation).
+bool Plottable(const ColumnDescriptor& d) { return d.quantity != Quantity::EulerParameter && d.quantity != Quantity::Time; }
+
 void WriteSeries(const Motion& m, const std::vector<int>& frames, Json* j) {
   j->Key("series");
   j->Raw("[");
-  bool first = true, any_default = false;
+  bool first = true;
   for (int c = 1; c < m.cols(); ++c) {
     const ColumnDescriptor& d = m.columns()[c];
-    if (d.quantity == Quantity::EulerParameter) continue;
-    const bool by_default = (d.order == 0 && (d.quantity == Quantity::PointPosition || d.quantity == Quantity::JointAngle || d.quantity == Quantity::Angle ||
-                                              d.quantity == Quantity::JointSlide || d.quantity == Quantity::Distance ||
-                                              d.quantity == Quantity::DriverEffort));
-    any_default = any_default || by_default;
+    if (!Plottable(d)) continue;
     j->Raw(first ? "{" : ",{");
     first = false;
-    j->Key("name"), j->Str(d.name), j->Raw(","), j->Key("unit"), j->Str(d.unit), j->Raw(",");
-    j->Key("default"), j->Raw(by_default || (!any_default && c == 1) ? "true" : "false"), j->Raw(","), j->Key("values"), j->Raw("[");
+    j->Key("name"), j->Str(d.name), j->Raw(","), j->Key("unit"), j->Str(d.unit), j->Raw(","), j->Key("values"), j->Raw("[");
     for (size_t f = 0; f < frames.size(); ++f) { if (f) j->Raw(","); j->Num(m.at(frames[f], c)); }
     j->Raw("]}");
   }
+  j->Raw("]");
+}
+
+bool Varies(const Motion& m, int c) {
+  for (int r = 1; r < m.rows(); ++r)
+    if (std::abs(m.at(r, c) - m.at(0, c)) > 1e-9 * std::max(1.0, std::abs(m.at(0, c)))) return true;
+  return false;
+}
+
+// Columns (order 0) whose subject is one of `names`; those that vary when any does.
+std::vector<int> ColumnsOfSubjects(const Model& model, const Motion& m, const std::vector<std::string>& names, bool bodies) {
+  std::vector<int> all, varying;
+  for (int c = 1; c < m.cols(); ++c) {
+    const ColumnDescriptor& d = m.columns()[c];
+    if (!Plottable(d) || d.order != 0 || d.IsDiagnostic()) continue;
+    if (bodies != (d.quantity == Quantity::BodyPosition)) continue;
+    if (std::find(names.begin(), names.end(), d.subject) == names.end()) continue;
+    all.push_back(c);
+    if (Varies(m, c)) varying.push_back(c);
+  }
+  (void)model;
+  return varying.empty() ? all : varying;
+}
+
+// What the file is about: its outputs, else its drivers, else the first moving body's position.
+std::vector<int> DefaultColumns(const Model& model, const Motion& m) {
+  std::vector<std::string> names;
+  for (const Output& o : model.outputs) names.push_back(o.name);
+  std::vector<int> cols = ColumnsOfSubjects(model, m, names, false);
+  if (!cols.empty()) return cols;
+  names.clear();
+  for (const Driver& d : model.drivers) names.push_back(d.name);
+  cols = ColumnsOfSubjects(model, m, names, false);
+  for (int b = 0; cols.empty() && b < model.num_bodies(); ++b) {
+    cols = ColumnsOfSubjects(model, m, {model.bodies[b].name}, true);
+    bool moves = false;
+    for (int c : cols) moves = moves || Varies(m, c);
+    if (!moves && b + 1 < model.num_bodies()) cols.clear();
+  }
+  return cols;
+}
+
+// Default panels: the default columns grouped by unit, in table order.
+std::vector<std::vector<std::string>> DefaultPanels(const Model& model, const Motion& m) {
+  std::vector<std::vector<std::string>> panels;
+  std::vector<std::string> units;
+  for (int c : DefaultColumns(model, m)) {
+    const ColumnDescriptor& d = m.columns()[c];
+    const auto at = std::find(units.begin(), units.end(), d.unit);
+    if (at == units.end()) units.push_back(d.unit), panels.push_back({d.name});
+    else panels[at - units.begin()].push_back(d.name);
+  }
+  return panels;
+}
+
+void WritePanels(const std::vector<std::vector<std::string>>& panels, Json* j) {
+  j->Key("plots"), j->Raw("[");
+  for (size_t p = 0; p < panels.size(); ++p) {
+    j->Raw(p ? ",[" : "[");
+    for (size_t k = 0; k < panels[p].size(); ++k) { if (k) j->Raw(","); j->Str(panels[p][k]); }
+    j->Raw("]");
+  }
+  j->Raw("]");
+}
+
+// Rotation of body b at a row from its Euler parameter columns.
+Mat3 RotationAt(const Motion& m, int row, int e0) {
+  const Eigen::Quaterniond q(m.at(row, e0), m.at(row, e0 + 1), m.at(row, e0 + 2), m.at(row, e0 + 3));
+  return q.normalized().toRotationMatrix();
+}
+
+// The box every drawn point stays in over the whole run, and whether every point
+// moves in one plane: the second moment of the points' displacements from their
+// first positions has a null direction (the plane's normal) while the others do not.
+void WriteExtent(const Model& model, const Motion& m, const ScenePoints& sp, const std::vector<int>& frames, double L, Json* j) {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  Mat3 moment = Mat3::Zero();
+  const int order = m.layout().options().order;
+  auto grow = [&](const Vec3& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); };
+  for (const Vec3& p : sp.ground) grow(p * L);
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyColumns c = ColumnsOf(m, b);
+    std::vector<Vec3> first(sp.body[b].size());
+    for (size_t f = 0; f < frames.size(); ++f) {
+      const int r = frames[f];
+      const Vec3 x(m.at(r, c.x), m.at(r, c.x + order + 1), m.at(r, c.x + 2 * (order + 1)));
+      const Mat3 A = RotationAt(m, r, c.e0);
+      for (size_t k = 0; k < sp.body[b].size(); ++k) {
+        const Vec3 p = x + A * (sp.body[b][k] * L);
+        grow(p);
+        if (f == 0) first[k] = p;
+        moment += (p - first[k]) * (p - first[k]).transpose();
+      }
+    }
+  }
+  if (!(lo.x() <= hi.x())) lo = hi = Vec3::Zero();
+  j->Key("bounds"), j->Raw("{"), j->Key("lo"), j->Vec(lo, 1), j->Raw(","), j->Key("hi"), j->Vec(hi, 1), j->Raw("},");
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(moment);
+  const Eigen::Vector3d ev = eig.eigenvalues().cwiseMax(0.0);  // ascending
+  const bool planar = ev[1] > 0 && std::sqrt(ev[0]) <= 1e-6 * std::sqrt(ev[2]);
+  j->Key("planar");
+  if (planar) j->Vec(eig.eigenvectors().col(0), 1);
+  else j->Raw("null");
+}
+
+void Mark(double t, const char* kind, const std::string& label, bool* first, Json* j) {
+  j->Raw(*first ? "{" : ",{");
+  *first = false;
+  j->Key("t"), j->Num(t), j->Raw(","), j->Key("kind"), j->Str(kind), j->Raw(","), j->Key("label"), j->Str(label), j->Raw("}");
+}
+
+// Times every plot marks: re-selections of the redundant equations, a singular
+// position or limit of motion, and where a partial run stopped.
+void WriteMarks(const Motion& m, double stop_t, Json* j) {
+  j->Key("marks"), j->Raw("[");
+  bool first = true;
+  for (const Reselection& r : m.report.reselections) Mark(r.t, "reselection", "redundant equations re-selected", &first, j);
+  const auto& singular = m.stop.singular ? m.stop.singular : m.report.singular;
+  if (singular) Mark(singular->t, "singular", "singular position", &first, j);
+  if (m.report.limit) Mark(m.report.limit->t, "limit", "limit of motion", &first, j);
+  if (!m.complete) Mark(stop_t, "stop", "run stopped", &first, j);
+  j->Raw("]");
+}
+
+// The page's up direction: against gravity when the model has it, else the option.
+Vec3 UpOf(const Model& model, const SceneOptions& o) {
+  return model.gravity.norm() > 0 ? Vec3(-model.gravity.normalized()) : o.up.normalized();
+}
+
+// Distance drivers (a Stewart platform's legs): drawn as lines between their points,
+// as distance joints are; and ground's points, drawn as fixed pivots.
+void WriteLinksAndGround(const Model& model, const ScenePoints& sp, double L, Json* j) {
+  j->Key("links"), j->Raw("[");
+  bool first = true;
+  for (const Driver& d : model.drivers)
+    if (d.kind == DriverKind::Distance) {
+      j->Raw(first ? "{" : ",{");
+      first = false;
+      j->Key("name"), j->Str(d.name), j->Raw(","), j->Key("body1"), j->Num(d.body1), j->Raw(","), j->Key("origin"), j->Vec(d.point1, L), j->Raw(",");
+      j->Key("body2"), j->Num(d.body2), j->Raw(","), j->Key("origin2"), j->Vec(d.point2, L), j->Raw("}");
+    }
+  j->Raw("],"), j->Key("ground"), j->Raw("[");
+  for (size_t k = 0; k < sp.ground.size(); ++k) { if (k) j->Raw(","); j->Vec(sp.ground[k], L); }
+  j->Raw("]");
+}
+
+void WriteTraces(const Model& model, double L, Json* j) {
+  j->Key("traces"), j->Raw("[");
+  bool first = true;
+  for (const Output& out : model.outputs)
+    if (out.kind == OutputKind::Point) {
+      j->Raw(first ? "{" : ",{");
+      first = false;
+      j->Key("name"), j->Str(out.name), j->Raw(","), j->Key("body"), j->Num(out.body1), j->Raw(","), j->Key("point"), j->Vec(out.point1, L), j->Raw("}");
+    }
   j->Raw("]");
 }
 
@@ -171,34 +325,26 @@ std::string SceneData(const Model& model, const Motion& m, const SceneOptions& o
   Json j;
   j.Raw("{"), j.Key("name"), j.Str(model.name), j.Raw(","), j.Key("size"), j.Num(model.characteristic_length * L), j.Raw(",");
   Vec3 center = Vec3::Zero();
-  double floor = 0;
-  for (const Body& b : model.bodies) center += b.position / std::max(1, model.num_bodies()), floor = std::min(floor, b.position.y());
-  j.Key("center"), j.Vec(center, L), j.Raw(","), j.Key("floor"), j.Num((floor - 0.5 * model.characteristic_length) * L), j.Raw(",");
-  j.Key("times"), j.Raw("[");
+  for (const Body& b : model.bodies) center += b.position / std::max(1, model.num_bodies());
+  j.Key("center"), j.Vec(center, L), j.Raw(","), j.Key("up"), j.Vec(UpOf(model, o), 1), j.Raw(",");
+  WriteExtent(model, m, sp, frames, L, &j);
+  j.Raw(","), j.Key("times"), j.Raw("[");
   for (size_t f = 0; f < frames.size(); ++f) { if (f) j.Raw(","); j.Num(m.at(frames[f], 0)); }
   j.Raw("],");
   WriteBodies(model, m, sp, frames, L, &j);
   j.Raw(",");
   WriteJoints(model, L, &j);
-  j.Raw(","), j.Key("traces"), j.Raw("[");
-  bool first = true;
-  for (const Output& out : model.outputs)
-    if (out.kind == OutputKind::Point) {
-      j.Raw(first ? "{" : ",{");
-      first = false;
-      j.Key("name"), j.Str(out.name), j.Raw(","), j.Key("body"), j.Num(out.body1), j.Raw(","), j.Key("point"), j.Vec(out.point1, L), j.Raw("}");
-    }
-  j.Raw("],");
+  j.Raw(",");
+  WriteTraces(model, L, &j);
+  j.Raw(",");
+  WriteLinksAndGround(model, sp, L, &j);
+  j.Raw(",");
   WriteSeries(m, frames, &j);
+  j.Raw(",");
+  WritePanels(o.plots.empty() ? DefaultPanels(model, m) : o.plots, &j);
   const double stop_t = m.stop.singular ? m.stop.singular->t : (m.rows() ? m.at(m.rows() - 1, 0) : 0);
-  j.Raw(","), j.Key("marks");
-  if (m.complete) {
-    j.Raw("[]");
-  } else {
-    j.Raw("[{\"t\":");
-    j.Num(stop_t);
-    j.Raw("}]");
-  }
+  j.Raw(",");
+  WriteMarks(m, stop_t, &j);
   j.Raw(","), j.Key("stop"), j.Raw("{"), j.Key("complete"), j.Raw(m.complete ? "true" : "false"), j.Raw(",");
   j.Key("t"), j.Num(stop_t), j.Raw(","), j.Key("message"), j.Str(m.stop.Summary()), j.Raw("}}");
   return j.str();
@@ -225,23 +371,61 @@ const char kPageHead[] = R"HTML(<!DOCTYPE html>
 
 const char kPageStyle[] = R"HTML(</title>
 <style>
-body{margin:0;font:13px sans-serif;display:grid;grid-template-columns:1fr 500px;grid-template-rows:auto 1fr;height:100vh}
-#bar{grid-column:1/3;padding:6px;background:#333;color:#eee;display:flex;gap:8px;align-items:center;flex-wrap:wrap}
-#bar input[type=range]{width:240px} #view{position:relative;min-height:0} #side{overflow:auto;padding:6px;border-left:1px solid #ccc}
-#columns{width:480px;height:140px} #label{position:fixed;background:#fff;border:1px solid #999;padding:2px 4px;pointer-events:none}
-#status{color:#f66}
+body{margin:0;font:13px sans-serif;display:grid;grid-template-columns:1fr 560px;grid-template-rows:auto 1fr auto;height:100vh;overflow:hidden}
+#bar{grid-column:1/3;padding:5px 6px;background:#333;color:#eee;display:flex;gap:6px;align-items:center;flex-wrap:wrap}
+#bar input[type=range]{width:200px} #bar a{color:#9cf} #view{position:relative;min-height:0;grid-row:2/4}
+#panels{overflow:hidden;padding:2px 6px 0 6px;border-left:1px solid #ccc;min-height:0}
+.panel>div{text-align:right;font-size:11px;height:14px} .panel a{color:#06c} #chooser{padding:4px 6px;border-left:1px solid #ccc;font-size:12px}
+#columns{width:540px;height:64px} #label{position:fixed;background:#fff;border:1px solid #999;padding:2px 4px;pointer-events:none}
+#status{color:#f66} #export{display:none} #label:empty{display:none}
 </style></head><body>
 <div id="bar"><b id="title"></b><button id="play">play</button><input id="time" type="range" min="0" max="1000" value="0">
 <span id="clock"></span> speed <select id="speed"><option>0.1</option><option>0.25</option><option selected>1</option><option>2</option><option>5</option></select>
-<label><input id="loop" type="checkbox" checked> loop</label><button id="reset">reset view</button>
-<label><input id="traces" type="checkbox" checked> traces</label><label><input id="labels" type="checkbox" checked> labels</label>
+<label><input id="loop" type="checkbox" checked> loop</label>
+<button id="fit" title="fit the whole motion (a)">fit</button><button id="v-front" title="front view (f)">front</button>
+<button id="v-side" title="side view (s)">side</button><button id="v-top" title="top view (t)">top</button><button id="v-iso" title="isometric view (i)">iso</button>
+<label title="orthographic projection (o)"><input id="ortho" type="checkbox"> ortho</label>
+<label><input id="traces" type="checkbox" checked> paths</label><label><input id="labels" type="checkbox" checked> labels</label>
+<a id="csv" href="#" title="the page's table (as decimated for the page)">table CSV</a>
 <span id="status"></span></div>
 <div id="view"></div>
-<div id="side"><div>columns (ctrl-click for several):</div><select id="columns" multiple></select>
-<div>against: <select id="xaxis"></select></div><svg id="plot" width="480" height="260"></svg></div><div id="label"></div>
+<div id="panels"></div>
+<div id="chooser">plotted columns (ctrl-click for several; one panel per unit):<br><select id="columns" multiple></select>
+<br>against: <select id="xaxis"></select></div><div id="label"></div><pre id="export"></pre>
 )HTML";
 
 }  // namespace
+
+bool ParsePlots(const Motion& motion, const std::string& spec, std::vector<std::vector<std::string>>* panels,
+                std::string* error) {
+  std::vector<std::string> names;
+  for (const ColumnDescriptor& d : motion.columns())
+    if (Plottable(d)) names.push_back(d.name);
+  panels->clear();
+  std::stringstream groups(spec);
+  for (std::string group; std::getline(groups, group, ';');) {
+    std::vector<std::string> panel;
+    std::stringstream items(group);
+    for (std::string name; std::getline(items, name, ',');) {
+      name.erase(0, name.find_first_not_of(" \t"));
+      name.erase(name.find_last_not_of(" \t") + 1);
+      if (name.empty()) continue;
+      if (std::find(names.begin(), names.end(), name) == names.end()) {
+        std::string choices;
+        for (const auto& n : names) choices += (choices.empty() ? "" : ", ") + n;
+        *error = "--plots: no column '" + name + "'; the columns are: " + choices;
+        return false;
+      }
+      panel.push_back(name);
+    }
+    if (!panel.empty()) panels->push_back(panel);
+  }
+  if (panels->empty()) {
+    *error = "--plots: no column given; write names separated by ',' within a plot and ';' between plots";
+    return false;
+  }
+  return true;
+}
 
 std::string DefaultThreeJsDir() {
   const char* env = std::getenv("MECHKIN_THREE_JS_DIR");

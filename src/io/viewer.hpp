@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "analysis/motion.hpp"
 
@@ -14,7 +15,14 @@ namespace mechkin {
 struct SceneOptions {
   int max_frames = 2000;     // longer motions are decimated for the page
   std::string three_js_dir;  // where three.min.js and OrbitControls.js are; empty: the default
+  Vec3 up = Vec3::UnitY();   // drawn upwards when the model has no gravity (else −gravity)
+  std::vector<std::vector<std::string>> plots;  // panels of column names; empty: the file's outputs
 };
+
+/// "a,b;c" (columns by name, ',' within a plot, ';' between plots) → panels;
+/// false with a message naming the columns for an unknown name.
+bool ParsePlots(const Motion& motion, const std::string& spec, std::vector<std::vector<std::string>>* panels,
+                std::string* error);
 
 /// The Motion must hold every body (TableOptions::all_bodies).
 bool WriteViewerHtml(const Model& model, const Motion& motion, const SceneOptions& options, const std::string& path,

@@ -20,6 +20,9 @@ void SetupViewCommand(CLI::App& app, ViewOptions* o) {
                 "Also compute efforts and reactions (default when the file has inertia or loads; solved with "
                 "accelerations whatever --order shows)");
   cmd->add_flag("--no-forces", o->no_forces, "Kinematics only");
+  cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
+  cmd->add_option("--up", o->up, "Axis drawn upwards when the file has no gravity (default y)")->check(CLI::IsMember({"x", "y", "z"}));
+  cmd->add_option("--plots", o->plots, "Plotted columns: names separated by ',' within a plot, ';' between plots");
 }
 
 namespace {
@@ -39,7 +42,9 @@ RunRequest ViewOptions::Request() const {
 }
 
 int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
-  const std::optional<Model> loaded = LoadForCommand(o.file, err);
+  ParameterOverrides overrides;
+  if (!ParseOverrides(o.set, &overrides, err)) return 2;
+  const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides);
   if (!loaded) return 1;
   const Model& model = *loaded;
   const RunRequest request = o.Request();
@@ -53,6 +58,11 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   if (motion.rows() == 0) return 1;  // nothing to show
   SceneOptions scene;
   scene.max_frames = o.max_frames;
+  scene.up = o.up == "x" ? Vec3::UnitX() : o.up == "z" ? Vec3::UnitZ() : Vec3::UnitY();
+  if (!o.plots.empty() && !ParsePlots(motion, o.plots, &scene.plots, &why)) {
+    err << "mechkin view: " << why << "\n";
+    return 2;
+  }
   const std::string page = o.output.empty() ? DefaultPage(o.file) : o.output;
   if (!WriteViewerHtml(model, motion, scene, page, &why)) {
     err << "mechkin view: " << why << "\n";

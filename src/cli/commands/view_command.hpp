@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "analysis/run_request.hpp"
 
@@ -24,6 +25,9 @@ struct ViewOptions {
     r.keep_step_diagnostics = false;
     return r;
   }
+  std::vector<std::string> set;  // --set NAME=NUMBER, as `run`
+  std::string up = "y";          // --up x|y|z when the file has no gravity
+  std::string plots;             // --plots "a,b;c": panels of columns
 };
 
 void SetupViewCommand(CLI::App& app, ViewOptions* options);

@@ -1,33 +1,56 @@
 // mechkin view: the page's program. Reads window.MECHKIN_DATA (written by
 // src/io/viewer.cpp), draws each body as a stick figure of its joint and output
 // points with joint glyphs by type, animates the table's poses (interpolated in
-// time), traces output points, and plots any column against time (SVG) with a
-// cursor that follows the animation. Test hooks: window.mechkin.
+// time, playing in a loop unless the address has #paused or #t=), draws output
+// points' paths fading with time (coupler curves), frames the mechanism's whole
+// motion with standard views (front, side, top, iso; perspective or
+// orthographic; up = the data's up axis), and plots columns in panels, one per
+// unit, with ticks, grids, legends, a cursor readout and the marked events.
+// Test hooks: window.mechkin and the address fragment (#t= #paused #view= #ortho
+// #x= #probe= #export=).
 (function () {
   "use strict";
   const D = window.MECHKIN_DATA;
   const status = document.getElementById("status");
   const errors = window.MECHKIN_ERRORS || [];
   function flushErrors() { if (errors.length) document.body.setAttribute("data-errors", errors.join(" | ")); }
+  const hash = new URLSearchParams(location.hash.slice(1));
 
   const view = document.getElementById("view");
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  const background = new THREE.Color(0xf4f4f4);
   renderer.setPixelRatio(1);
-  renderer.setClearColor(0xf4f4f4);
+  renderer.setClearColor(background);
   view.appendChild(renderer.domElement);
   const scene = new THREE.Scene();
   const L = D.size > 0 ? D.size : 1;
-  const camera = new THREE.PerspectiveCamera(40, 1, L * 1e-3, L * 1e3);
-  const controls = new THREE.OrbitControls(camera, renderer.domElement);
+  function v3(a) { return new THREE.Vector3(a[0], a[1], a[2]); }
+  const up = v3(D.up).normalize();
+  const boxLo = v3(D.bounds.lo), boxHi = v3(D.bounds.hi);
+  const boxSize = Math.max(new THREE.Vector3().subVectors(boxHi, boxLo).length(), L * 1e-3);
+  // Two cameras sharing the up axis, each with its own controls (OrbitControls
+  // takes the up axis when it is made); one of them is active.
+  const perspective = new THREE.PerspectiveCamera(35, 1, boxSize * 1e-3, boxSize * 1e3);
+  const orthographic = new THREE.OrthographicCamera(-1, 1, 1, -1, -boxSize * 1e3, boxSize * 1e3);
+  perspective.up.copy(up);
+  orthographic.up.copy(up);
+  const controlsOf = new Map();
+  [perspective, orthographic].forEach(function (c) {
+    const k = new THREE.OrbitControls(c, renderer.domElement);
+    k.enabled = false;
+    controlsOf.set(c, k);
+  });
+  let camera = perspective, controls = controlsOf.get(camera);
+  controls.enabled = true;
   scene.add(new THREE.HemisphereLight(0xffffff, 0x808080, 0.9));
   const sun = new THREE.DirectionalLight(0xffffff, 0.6);
-  sun.position.set(1, 2, 3);
+  sun.position.copy(up).multiplyScalar(2).add(new THREE.Vector3(1, 1, 1));
   scene.add(sun);
 
   const palette = [0x1f77b4, 0xd62728, 0x2ca02c, 0xff7f0e, 0x9467bd, 0x8c564b, 0xe377c2, 0x17becf, 0xbcbd22, 0x7f7f7f];
-  const thick = L * 0.02;
+  function hex(c) { return "#" + c.toString(16).padStart(6, "0"); }
+  const thick = Math.min(L, boxSize) * 0.02;
   function material(color) { return new THREE.MeshLambertMaterial({ color: color }); }
-  function v3(a) { return new THREE.Vector3(a[0], a[1], a[2]); }
   function stick(a, b, r, mat) {
     const d = new THREE.Vector3().subVectors(b, a), len = d.length();
     const m = new THREE.Mesh(new THREE.CylinderBufferGeometry(r, r, Math.max(len, 1e-9), 12), mat);
@@ -95,18 +118,33 @@
     }
     if (glyph) { glyph.traverse(function (x) { if (x.isMesh) { x.userData.label = j.name + " (" + j.type + ")"; pickable.push(x); } }); parent(j.body1).add(glyph); }
   });
-  // Distance links: a thin line between their two body points, updated per frame.
-  const links = D.joints.filter(function (j) { return j.type === "distance"; }).map(function (j) {
-    const geo = new THREE.BufferGeometry();
-    geo.setAttribute("position", new THREE.Float32BufferAttribute([0, 0, 0, 0, 0, 0], 3));
-    const line = new THREE.Line(geo, new THREE.LineBasicMaterial({ color: 0x333333 }));
-    scene.add(line);
-    return { j: j, line: line };
+  // Ground's points: fixed pivots.
+  D.ground.forEach(function (p) { ground.add(ball(v3(p), thick * 1.4, groundMat)); });
+  // Distance links and drivers: a thin rod between their two body points, set each frame.
+  const linkMat = material(0x555555), yAxis = new THREE.Vector3(0, 1, 0);
+  const links = D.joints.filter(function (j) { return j.type === "distance"; }).concat(D.links).map(function (j) {
+    const rod = new THREE.Mesh(new THREE.CylinderBufferGeometry(thick * 0.5, thick * 0.5, 1, 8), linkMat);
+    rod.userData.label = j.name;
+    pickable.push(rod);
+    scene.add(rod);
+    return { j: j, rod: rod };
   });
   scene.add(new THREE.AxesHelper(L * 0.3));
-  const grid = new THREE.GridHelper(L * 4, 20, 0xbbbbbb, 0xdddddd);
-  grid.position.y = D.floor;
+  // The floor: a grid across the up axis, under the whole motion's box.
+  const boxCenter = new THREE.Vector3().addVectors(boxLo, boxHi).multiplyScalar(0.5);
+  const grid = new THREE.GridHelper(boxSize * 2, 20, 0xbbbbbb, 0xdddddd);
+  grid.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), up);
+  {
+    let low = Infinity;
+    boxCorners().forEach(function (c) { low = Math.min(low, c.dot(up)); });
+    grid.position.copy(boxCenter).addScaledVector(up, low - boxCenter.dot(up) - 0.05 * boxSize);
+  }
   scene.add(grid);
+  function boxCorners() {
+    const out = [];
+    for (let k = 0; k < 8; ++k) out.push(new THREE.Vector3(k & 1 ? boxHi.x : boxLo.x, k & 2 ? boxHi.y : boxLo.y, k & 4 ? boxHi.z : boxLo.z));
+    return out;
+  }
 
   // Poses: frame k of body i at D.bodies[i].poses[7k .. 7k+6] = x y z qx qy qz qw.
   const T = D.times, n = T.length;
@@ -139,46 +177,141 @@
     });
     links.forEach(function (l) {
       const a = globalPoint(l.j.body1, l.j.origin, new THREE.Vector3()), b = globalPoint(l.j.body2, l.j.origin2, new THREE.Vector3());
-      l.line.geometry.attributes.position.setXYZ(0, a.x, a.y, a.z);
-      l.line.geometry.attributes.position.setXYZ(1, b.x, b.y, b.z);
-      l.line.geometry.attributes.position.needsUpdate = true;
+      const d = new THREE.Vector3().subVectors(b, a), len = d.length();
+      l.rod.position.copy(a).add(b).multiplyScalar(0.5);
+      l.rod.scale.set(1, Math.max(len, 1e-9), 1);
+      if (len > 0) l.rod.quaternion.setFromUnitVectors(yAxis, d.divideScalar(len));
     });
     slider.value = String(Math.round(1000 * (current - T[0]) / Math.max(T[n - 1] - T[0], 1e-300)));
     clock.textContent = "t = " + current.toPrecision(6) + " s";
+    paths.fade(k);
     plots.cursor(current);
   }
 
-  // Traces of output points over the whole motion (coupler curves).
-  const traces = new THREE.Group();
-  D.traces.forEach(function (tr) {
-    const pts = [], pos = new THREE.Vector3(), q = new THREE.Quaternion(), bi = tr.body;
-    for (let k = 0; k < n; ++k) {
-      if (bi >= 0) { pose(bi, k, pos, q); pts.push(v3(tr.point).applyQuaternion(q).add(pos)); } else pts.push(v3(tr.point));
+  // Paths of output points over the whole motion (coupler curves): the part
+  // already travelled bright and fading with its age, the rest faint.
+  const paths = (function () {
+    const group = new THREE.Group(), lines = [];
+    D.traces.forEach(function (tr, i) {
+      const pos = new THREE.Vector3(), q = new THREE.Quaternion(), xyz = new Float32Array(3 * n);
+      for (let k = 0; k < n; ++k) {
+        const p = v3(tr.point);
+        if (tr.body >= 0) { pose(tr.body, k, pos, q); p.applyQuaternion(q).add(pos); }
+        xyz[3 * k] = p.x; xyz[3 * k + 1] = p.y; xyz[3 * k + 2] = p.z;
+      }
+      const geo = new THREE.BufferGeometry();
+      geo.setAttribute("position", new THREE.BufferAttribute(xyz, 3));
+      geo.setAttribute("color", new THREE.BufferAttribute(new Float32Array(3 * n), 3));
+      const color = new THREE.Color(i ? palette[(i + 5) % palette.length] : 0x111111);
+      const line = new THREE.Line(geo, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
+      lines.push({ line: line, color: color });
+      group.add(line);
+    });
+    const span = Math.max(T[n - 1] - T[0], 1e-300), mix = new THREE.Color();
+    function fade(k) {
+      lines.forEach(function (l) {
+        const c = l.line.geometry.attributes.color;
+        for (let m = 0; m < n; ++m) {
+          const age = m <= k ? T[k] - T[m] : span - (T[m] - T[k]);  // the motion loops: the rest is last lap's
+          const w = 0.25 + 0.75 * Math.exp(-3 * age / span);
+          mix.copy(background).lerp(l.color, w);
+          c.setXYZ(m, mix.r, mix.g, mix.b);
+        }
+        c.needsUpdate = true;
+      });
     }
-    const geo = new THREE.BufferGeometry().setFromPoints(pts);
-    traces.add(new THREE.Line(geo, new THREE.LineBasicMaterial({ color: 0x222222 })));
-  });
-  scene.add(traces);
+    scene.add(group);
+    return { group: group, fade: fade };
+  })();
 
-  // Camera: look at the mechanism's middle from an oblique direction.
-  function resetView() {
-    const c = v3(D.center);
-    camera.position.copy(c).add(new THREE.Vector3(1.2, 0.9, 2.2).multiplyScalar(L * 1.6));
-    controls.target.copy(c);
-    camera.lookAt(c);
-    controls.update();
+  // Standard views: right-handed (right, up, back) axes for the up axis; y-up
+  // looks from +z at the front, z-up from −y (as CAD and Blender do).
+  const frameAxes = (function () {
+    const a = [Math.abs(up.x), Math.abs(up.y), Math.abs(up.z)], main = a.indexOf(Math.max.apply(null, a));
+    const right = [new THREE.Vector3(0, 1, 0), new THREE.Vector3(1, 0, 0), new THREE.Vector3(1, 0, 0)][main];
+    right.addScaledVector(up, -right.dot(up)).normalize();
+    const back = new THREE.Vector3().crossVectors(right, up).normalize();
+    return { right: right, back: back };
+  })();
+  const views = {
+    front: function () { return frameAxes.back.clone(); },
+    side: function () { return frameAxes.right.clone(); },
+    top: function () { return up.clone().addScaledVector(frameAxes.back, 1e-3).normalize(); },
+    iso: function () { return frameAxes.right.clone().add(frameAxes.back).add(up).normalize(); },
+  };
+  let direction = views.iso();  // from the target towards the camera
+  if (D.planar) {  // a planar motion reads best square on: along its plane's normal
+    direction = v3(D.planar).normalize();
+    if (direction.dot(frameAxes.back) + 1e-3 * direction.dot(up) < 0) direction.negate();
+    if (Math.abs(direction.dot(up)) > 0.999) direction.addScaledVector(frameAxes.back, 1e-3).normalize();
+  }
+
+  // Fit: the camera looks along `direction` at the whole motion's box, as close as
+  // lets every corner in with a margin (orthographic: the frustum around them).
+  function fit() {
+    const aspect = Math.max(view.clientWidth, 1) / Math.max(view.clientHeight, 1);
+    const back = direction.clone().normalize(), right = new THREE.Vector3().crossVectors(up, back);
+    if (right.lengthSq() < 1e-12) right.copy(frameAxes.right);
+    right.normalize();
+    const upward = new THREE.Vector3().crossVectors(back, right);
+    const corners = boxCorners();
+    let xlo = Infinity, xhi = -Infinity, ylo = Infinity, yhi = -Infinity;
+    corners.forEach(function (c) {
+      const x = c.clone().sub(boxCenter).dot(right), y = c.clone().sub(boxCenter).dot(upward);
+      xlo = Math.min(xlo, x); xhi = Math.max(xhi, x); ylo = Math.min(ylo, y); yhi = Math.max(yhi, y);
+    });
+    const target = boxCenter.clone().addScaledVector(right, (xlo + xhi) / 2).addScaledVector(upward, (ylo + yhi) / 2);
+    const margin = 1.12, halfW = Math.max((xhi - xlo) / 2, boxSize * 0.02), halfH = Math.max((yhi - ylo) / 2, boxSize * 0.02);
+    const ty = Math.tan(perspective.fov * Math.PI / 360), tx = ty * aspect;
+    let dist = 0;
+    corners.forEach(function (c) {
+      const d = c.clone().sub(target), z = d.dot(back);
+      dist = Math.max(dist, z + margin * Math.abs(d.dot(right)) / tx, z + margin * Math.abs(d.dot(upward)) / ty);
+    });
+    perspective.position.copy(target).addScaledVector(back, dist);
+    perspective.near = dist * 1e-3; perspective.far = dist * 10 + boxSize * 10;
+    const h = margin * Math.max(halfH, halfW / aspect);
+    Object.assign(orthographic, { left: -h * aspect, right: h * aspect, top: h, bottom: -h, zoom: 1 });
+    orthographic.position.copy(target).addScaledVector(back, boxSize * 4);
+    [perspective, orthographic].forEach(function (c) {
+      c.aspect = aspect;
+      c.lookAt(target);
+      c.updateProjectionMatrix();
+      controlsOf.get(c).target.copy(target);
+      controlsOf.get(c).update();
+    });
+  }
+  function setView(name) { direction = views[name](); fit(); }
+  function setOrtho(on) {
+    controls.enabled = false;
+    camera = on ? orthographic : perspective;
+    controls = controlsOf.get(camera);
+    controls.enabled = true;
+    orthoBox.checked = on;
+    document.body.setAttribute("data-camera", on ? "orthographic" : "perspective");
   }
 
   // Controls.
   const slider = document.getElementById("time"), clock = document.getElementById("clock");
   const playBtn = document.getElementById("play"), speedSel = document.getElementById("speed"), loopBox = document.getElementById("loop");
+  const orthoBox = document.getElementById("ortho");
   let playing = false, lastWall = 0;
-  playBtn.onclick = function () { playing = !playing; playBtn.textContent = playing ? "pause" : "play"; lastWall = performance.now(); };
-  slider.oninput = function () { playing = false; playBtn.textContent = "play"; setTime(T[0] + (T[n - 1] - T[0]) * Number(slider.value) / 1000); };
-  document.getElementById("reset").onclick = resetView;
-  document.getElementById("traces").onchange = function (e) { traces.visible = e.target.checked; };
+  function setPlaying(on) { playing = on; playBtn.textContent = playing ? "pause" : "play"; lastWall = performance.now(); }
+  playBtn.onclick = function () { setPlaying(!playing); };
+  slider.oninput = function () { setPlaying(false); setTime(T[0] + (T[n - 1] - T[0]) * Number(slider.value) / 1000); };
+  document.getElementById("fit").onclick = fit;
+  ["front", "side", "top", "iso"].forEach(function (v) { document.getElementById("v-" + v).onclick = function () { setView(v); }; });
+  orthoBox.onchange = function () { setOrtho(orthoBox.checked); };
+  document.getElementById("traces").onchange = function (e) { paths.group.visible = e.target.checked; };
   const label = document.getElementById("label");
   document.getElementById("labels").onchange = function (e) { label.hidden = !e.target.checked; };
+  const keys = { f: function () { setView("front"); }, s: function () { setView("side"); }, t: function () { setView("top"); },
+    i: function () { setView("iso"); }, a: fit, o: function () { setOrtho(camera !== orthographic); }, " ": function () { setPlaying(!playing); } };
+  window.addEventListener("keydown", function (e) {
+    if (e.target.tagName === "INPUT" || e.target.tagName === "SELECT" || e.ctrlKey || e.metaKey || e.altKey || !keys[e.key]) return;
+    keys[e.key]();
+    e.preventDefault();
+  });
   const ray = new THREE.Raycaster(), mouse = new THREE.Vector2();
   renderer.domElement.addEventListener("mousemove", function (e) {
     const r = renderer.domElement.getBoundingClientRect();
@@ -190,60 +323,12 @@
     label.style.top = (e.clientY + 12) + "px";
   });
 
-  // Plots: SVG, several columns against time or against any column (a driver's
-  // value, say), a cursor, stop marks.
-  const plots = (function () {
-    const svg = document.getElementById("plot"), pick = document.getElementById("columns"), xsel = document.getElementById("xaxis");
-    function title(s) { return s.name + (s.unit ? " [" + s.unit + "]" : ""); }
-    D.series.forEach(function (s, i) { const o = document.createElement("option"); o.value = i; o.textContent = title(s); pick.appendChild(o); });
-    { const o = document.createElement("option"); o.value = -1; o.textContent = "t [s]"; xsel.appendChild(o); }
-    D.series.forEach(function (s, i) { const o = document.createElement("option"); o.value = i; o.textContent = title(s); xsel.appendChild(o); });
-    const defaults = D.series.map(function (s, i) { return i; }).filter(function (i) { return D.series[i].default; }).slice(0, 1);
-    Array.prototype.forEach.call(pick.options, function (o) { o.selected = defaults.indexOf(Number(o.value)) >= 0; });
-    const W = 480, H = 260, M = 44, ns = "http://www.w3.org/2000/svg";
-    let cursorLine = null;
-    function el(name, attrs) { const e = document.createElementNS(ns, name); for (const k in attrs) e.setAttribute(k, attrs[k]); return e; }
-    let xs = T, xlo = T[0], xhi = T[n - 1];
-    function Xv(v) { return M + (W - M - 8) * (v - xlo) / Math.max(xhi - xlo, 1e-300); }
-    function rowAt(t) { let k = 0; while (k + 1 < n && T[k + 1] <= t) ++k; return k; }
-    // Time maps straight onto a time axis; on a column's axis, through the row at that time.
-    function X(t) { return xs === T ? Xv(t) : Xv(xs[rowAt(t)]); }
-    function draw() {
-      while (svg.firstChild) svg.removeChild(svg.firstChild);
-      xs = Number(xsel.value) < 0 ? T : D.series[Number(xsel.value)].values;
-      xlo = Infinity; xhi = -Infinity;
-      xs.forEach(function (v) { if (isFinite(v)) { xlo = Math.min(xlo, v); xhi = Math.max(xhi, v); } });
-      if (!(xhi > xlo)) { xlo -= 1; xhi += 1; }
-      const chosen = Array.prototype.filter.call(pick.options, function (o) { return o.selected; }).map(function (o) { return D.series[Number(o.value)]; });
-      let lo = Infinity, hi = -Infinity;
-      chosen.forEach(function (s) { s.values.forEach(function (v) { if (isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); } }); });
-      if (!(hi > lo)) { lo -= 1; hi += 1; }
-      const Y = function (v) { return H - 24 - (H - 34) * (v - lo) / (hi - lo); };
-      svg.appendChild(el("rect", { x: M, y: 10, width: W - M - 8, height: H - 34, fill: "white", stroke: "#ccc" }));
-      svg.appendChild(el("text", { x: 4, y: 18, "font-size": 10 }).appendChild(document.createTextNode(hi.toPrecision(4))).parentNode);
-      svg.appendChild(el("text", { x: 4, y: H - 24, "font-size": 10 }).appendChild(document.createTextNode(lo.toPrecision(4))).parentNode);
-      svg.appendChild(el("text", { x: W / 2, y: H - 6, "font-size": 10 }).appendChild(document.createTextNode(xsel.options[xsel.selectedIndex].textContent)).parentNode);
-      chosen.forEach(function (s, i) {
-        let d = "";
-        s.values.forEach(function (v, k) { if (isFinite(v) && isFinite(xs[k])) d += (d ? "L" : "M") + Xv(xs[k]).toFixed(1) + "," + Y(v).toFixed(1); });
-        svg.appendChild(el("path", { d: d, fill: "none", stroke: "#" + palette[i % palette.length].toString(16).padStart(6, "0"), "stroke-width": 1.5 }));
-      });
-      D.marks.forEach(function (m) { svg.appendChild(el("line", { x1: X(m.t), x2: X(m.t), y1: 10, y2: H - 24, stroke: "red", "stroke-dasharray": "4 2" })); });
-      cursorLine = el("line", { x1: 0, x2: 0, y1: 10, y2: H - 24, stroke: "#333" });
-      svg.appendChild(cursorLine);
-      cursor(current);
-    }
-    function cursor(t) { if (cursorLine) { cursorLine.setAttribute("x1", X(t)); cursorLine.setAttribute("x2", X(t)); } }
-    pick.onchange = draw;
-    xsel.onchange = draw;
-    return { draw: draw, cursor: cursor, xaxis: xsel };
-  })();
+  const plots = makePlots();
 
   function resize() {
     const w = view.clientWidth, h = view.clientHeight;
     renderer.setSize(w, h);
-    camera.aspect = w / h;
-    camera.updateProjectionMatrix();
+    fit();
   }
   window.addEventListener("resize", resize);
 
@@ -255,7 +340,7 @@
     if (playing) {
       const dt = (now - lastWall) / 1000 * Number(speedSel.value);
       let t = current + dt;
-      if (t > T[n - 1]) { if (loopBox.checked) t = T[0]; else { t = T[n - 1]; playing = false; playBtn.textContent = "play"; } }
+      if (t > T[n - 1]) { if (loopBox.checked) t = T[0]; else { t = T[n - 1]; setPlaying(false); } }
       setTime(t);
     }
     lastWall = now;
@@ -275,28 +360,188 @@
       window.mechkin.color(b).toString(16).padStart(6, "0") + "," + rgba[0] + "," + rgba[1] + "," + rgba[2]);
   }
 
-  // Test hooks: set the time, and project a body point to page pixels.
+  // Test hooks: set the time, project a body point to page pixels, the exports.
   window.mechkin = {
-    setTime: function (t) { playing = false; setTime(t); renderer.render(scene, camera); },
+    setTime: function (t) { setPlaying(false); setTime(t); renderer.render(scene, camera); },
     project: function (body, local) {
       const p = globalPoint(body, local, new THREE.Vector3()).project(camera), r = renderer.domElement.getBoundingClientRect();
       return [r.left + (p.x + 1) / 2 * r.width, r.top + (1 - p.y) / 2 * r.height];
     },
-    color: function (body) { return groups[body].userData.color; }
+    color: function (body) { return groups[body].userData.color; },
+    view: setView, ortho: setOrtho, fit: fit, svg: plots.svgText, csv: plots.csvText,
   };
 
+  // Plots: panels of columns (one axis and unit each) against time or any
+  // column, with ticks and grids on both axes, a legend with the values at the
+  // cursor, the events of the run marked, each downloadable as SVG.
+  function makePlots() {
+    const side = document.getElementById("panels"), pick = document.getElementById("columns"), xsel = document.getElementById("xaxis");
+    const ns = "http://www.w3.org/2000/svg";
+    function title(s) { return s.name + (s.unit ? " [" + s.unit + "]" : ""); }
+    const byName = new Map(D.series.map(function (s, i) { return [s.name, i]; }));
+    D.series.forEach(function (s, i) { const o = document.createElement("option"); o.value = i; o.textContent = title(s); pick.appendChild(o); });
+    { const o = document.createElement("option"); o.value = -1; o.textContent = "t [s]"; xsel.appendChild(o); }
+    D.series.forEach(function (s, i) { const o = document.createElement("option"); o.value = i; o.textContent = title(s); xsel.appendChild(o); });
+    let panels = D.plots.map(function (p) { return p.map(function (name) { return byName.get(name); }).filter(function (i) { return i !== undefined; }); })
+      .filter(function (p) { return p.length; });
+    Array.prototype.forEach.call(pick.options, function (o) { o.selected = panels.some(function (p) { return p.indexOf(Number(o.value)) >= 0; }); });
+    let drawn = [], xs = T, xlo = T[0], xhi = T[n - 1];
+    function el(name, attrs, text) {
+      const e = document.createElementNS(ns, name);
+      for (const k in attrs) e.setAttribute(k, attrs[k]);
+      if (text !== undefined) e.appendChild(document.createTextNode(text));
+      return e;
+    }
+    function range(values, out) {
+      values.forEach(function (v) { if (isFinite(v)) { out[0] = Math.min(out[0], v); out[1] = Math.max(out[1], v); } });
+      return out;
+    }
+    // Round tick steps (1, 2, 5 × 10^k), about `count` across [lo, hi].
+    function ticks(lo, hi, count) {
+      const raw = (hi - lo) / count, mag = Math.pow(10, Math.floor(Math.log10(raw)));
+      const step = [1, 2, 5, 10].map(function (f) { return f * mag; }).find(function (s) { return s >= raw; });
+      const out = [], digits = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
+      for (let v = Math.ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-9; v += step)
+        out.push({ v: v, text: Math.abs(v) >= 1e6 ? v.toExponential(2) : (Math.abs(v) < step * 1e-6 ? 0 : v).toFixed(Math.min(digits, 10)) });
+      return out;
+    }
+    function padded(r) {
+      if (!(r[1] > r[0])) { const m = Math.abs(r[0]) * 0.05 || 1; return [r[0] - m, r[0] + m]; }
+      const m = 0.04 * (r[1] - r[0]);
+      return [r[0] - m, r[1] + m];
+    }
+    function rowAt(t) { return frameAt(t)[0]; }
+    function drawPanel(members, index, W, H) {
+      const M = { l: 62, r: 18, t: 12 + 16 * Math.ceil(members.length / 2), b: 36 };
+      const svg = el("svg", { xmlns: ns, width: W, height: H, viewBox: "0 0 " + W + " " + H, "font-family": "sans-serif", "font-size": 11, class: "plot" });
+      const yr = padded(members.reduce(function (r, i) { return range(D.series[i].values, r); }, [Infinity, -Infinity]));
+      const X = function (v) { return M.l + (W - M.l - M.r) * (v - xlo) / (xhi - xlo); };
+      const Y = function (v) { return H - M.b - (H - M.t - M.b) * (v - yr[0]) / (yr[1] - yr[0]); };
+      svg.appendChild(el("rect", { x: M.l, y: M.t, width: W - M.l - M.r, height: H - M.t - M.b, fill: "white", stroke: "#999" }));
+      const unit = D.series[members[0]].unit;
+      ticks(yr[0], yr[1], Math.max(3, Math.floor((H - M.t - M.b) / 40))).forEach(function (k) {
+        svg.appendChild(el("line", { x1: M.l, x2: W - M.r, y1: Y(k.v), y2: Y(k.v), stroke: "#e4e4e4", class: "grid" }));
+        svg.appendChild(el("text", { x: M.l - 4, y: Y(k.v) + 4, "text-anchor": "end", class: "tick" }, k.text));
+      });
+      ticks(xlo, xhi, 6).forEach(function (k) {
+        svg.appendChild(el("line", { x1: X(k.v), x2: X(k.v), y1: M.t, y2: H - M.b, stroke: "#e4e4e4", class: "grid" }));
+        svg.appendChild(el("text", { x: X(k.v), y: H - M.b + 14, "text-anchor": "middle", class: "tick" }, k.text));
+      });
+      svg.appendChild(el("text", { x: 12, y: (M.t + H - M.b) / 2, transform: "rotate(-90 12 " + (M.t + H - M.b) / 2 + ")", "text-anchor": "middle" },
+        unit ? "[" + unit + "]" : "value"));
+      svg.appendChild(el("text", { x: (M.l + W - M.r) / 2, y: H - 4, "text-anchor": "middle" }, xsel.options[xsel.selectedIndex].textContent));
+      const values = [];
+      members.forEach(function (si, i) {
+        const s = D.series[si], color = hex(palette[(index * 3 + i) % palette.length]);
+        let d = "";
+        s.values.forEach(function (v, k) { if (isFinite(v) && isFinite(xs[k])) d += (d ? "L" : "M") + X(xs[k]).toFixed(1) + "," + Y(v).toFixed(1); });
+        svg.appendChild(el("path", { d: d, fill: "none", stroke: color, "stroke-width": 1.6, class: "series", "data-name": s.name }));
+      });
+      members.forEach(function (si, i) {  // the legend, two entries a row, each with the value at the cursor
+        const s = D.series[si], color = hex(palette[(index * 3 + i) % palette.length]);
+        const lx = M.l + (i % 2) * (W - M.l - M.r) / 2, ly = 12 + 16 * Math.floor(i / 2);
+        svg.appendChild(el("line", { x1: lx, x2: lx + 16, y1: ly - 4, y2: ly - 4, stroke: color, "stroke-width": 3 }));
+        const legend = el("text", { x: lx + 20, y: ly, class: "legend" }, title(s));
+        const value = el("tspan", { class: "value", "font-weight": "bold" }, "");
+        legend.appendChild(value);
+        svg.appendChild(legend);
+        values.push({ s: s, node: value });
+      });
+      D.marks.forEach(function (m) {
+        const line = el("line", { x1: 0, x2: 0, y1: M.t, y2: H - M.b, stroke: m.kind === "reselection" ? "#e08000" : "red",
+          "stroke-dasharray": "4 2", class: "mark mark-" + m.kind, "data-t": m.t });
+        line.appendChild(el("title", {}, m.label + " at t = " + m.t + " s"));
+        svg.appendChild(line);
+      });
+      const cursorLine = el("line", { x1: 0, x2: 0, y1: M.t, y2: H - M.b, stroke: "#333", class: "cursor" });
+      svg.appendChild(cursorLine);
+      return { svg: svg, X: X, marks: svg.querySelectorAll(".mark"), cursorLine: cursorLine, values: values };
+    }
+    function draw() {
+      while (side.firstChild) side.removeChild(side.firstChild);
+      xs = Number(xsel.value) < 0 ? T : D.series[Number(xsel.value)].values;
+      // Against time: the run's span and the marks (a stop lies a little after the last row).
+      const xr = Number(xsel.value) < 0 ? range(D.marks.map(function (m) { return m.t; }), [T[0], T[n - 1]])
+        : padded(range(xs, [Infinity, -Infinity]));
+      xlo = xr[0]; xhi = xr[1] > xr[0] ? xr[1] : xr[0] + 1;
+      const W = Math.max(320, side.clientWidth - 4);
+      const H = Math.max(180, Math.min(320, Math.floor((side.clientHeight - 8) / Math.max(panels.length, 1)) - 26));
+      drawn = panels.map(function (members, p) {
+        const d = drawPanel(members, p, W, H), box = document.createElement("div"), head = document.createElement("div");
+        box.className = "panel";
+        const save = document.createElement("a");
+        save.textContent = "SVG";
+        save.href = "#";
+        save.title = "download this plot as SVG";
+        save.onclick = function (e) { e.preventDefault(); download(svgText(p), "image/svg+xml", plotFileName(p) + ".svg"); };
+        head.appendChild(save);
+        box.appendChild(head);
+        box.appendChild(d.svg);
+        side.appendChild(box);
+        return d;
+      });
+      cursor(current);
+    }
+    function X(d, t) { return xs === T ? d.X(t) : d.X(xs[rowAt(t)]); }
+    function cursor(t) {
+      const k = frameAt(t), row = k[1] > 0.5 && k[0] + 1 < n ? k[0] + 1 : k[0];
+      drawn.forEach(function (d) {
+        d.cursorLine.setAttribute("x1", X(d, t)); d.cursorLine.setAttribute("x2", X(d, t));
+        d.marks.forEach(function (m) { const x = X(d, Number(m.getAttribute("data-t"))); m.setAttribute("x1", x); m.setAttribute("x2", x); });
+        d.values.forEach(function (v) { const y = v.s.values[row]; v.node.textContent = " = " + (isFinite(y) ? Number(y.toPrecision(5)) : "—"); });
+      });
+    }
+    function plotFileName(p) { return (D.name || "mechanism").replace(/[^\w.-]+/g, "_") + "-plot" + (p + 1); }
+    function svgText(p) { return '<?xml version="1.0" encoding="UTF-8"?>\n' + new XMLSerializer().serializeToString(drawn[p].svg); }
+    // The page's table (decimated as the page is) with the table's headers.
+    function csvText() {
+      const head = ["t [s]"].concat(D.series.map(title)).map(function (h) { return /[",]/.test(h) ? '"' + h.replace(/"/g, '""') + '"' : h; });
+      const lines = [head.join(",")];
+      for (let k = 0; k < n; ++k) lines.push([T[k]].concat(D.series.map(function (s) { return s.values[k] === null ? "" : s.values[k]; })).join(","));
+      return lines.join("\n") + "\n";
+    }
+    function download(text, type, name) {
+      const a = document.createElement("a");
+      a.href = URL.createObjectURL(new Blob([text], { type: type }));
+      a.download = name;
+      document.body.appendChild(a);
+      a.click();
+      setTimeout(function () { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+    }
+    document.getElementById("csv").onclick = function (e) { e.preventDefault(); download(csvText(), "text/csv", plotFileName(0).replace(/-plot1$/, "") + ".csv"); };
+    // Choosing columns by hand: one panel per unit, in the menu's order.
+    pick.onchange = function () {
+      const units = [];
+      panels = [];
+      Array.prototype.forEach.call(pick.options, function (o) {
+        if (!o.selected) return;
+        const i = Number(o.value), u = units.indexOf(D.series[i].unit);
+        if (u < 0) { units.push(D.series[i].unit); panels.push([i]); } else panels[u].push(i);
+      });
+      draw();
+    };
+    xsel.onchange = draw;
+    return { draw: draw, cursor: cursor, xaxis: xsel, svgText: svgText, csvText: csvText };
+  }
+
   resize();
-  resetView();
+  setOrtho(!!D.planar);
+  if (hash.has("view")) setView(hash.get("view"));
+  if (hash.has("ortho")) setOrtho(hash.get("ortho") !== "0");
   plots.draw();
-  const hash = new URLSearchParams(location.hash.slice(1));
   if (hash.has("x")) {  // #x=NAME: plot against that column
     Array.prototype.forEach.call(plots.xaxis.options, function (o, i) { if (o.textContent.split(" [")[0] === hash.get("x")) plots.xaxis.selectedIndex = i; });
     plots.draw();
   }
+  // Opens playing in a loop; #paused, or a time asked for (#t=), shows a still.
   setTime(hash.has("t") ? Number(hash.get("t")) : T[0]);
-  if (hash.has("play")) playBtn.onclick();
+  setPlaying(!hash.has("paused") && !hash.has("t"));
   renderer.render(scene, camera);
   if (hash.has("probe")) { probe = Number(hash.get("probe")); reportProbe(probe); }
+  if (hash.has("export")) {
+    const what = hash.get("export");
+    document.getElementById("export").textContent = what === "csv" ? plots.csvText() : plots.svgText(Number(what));
+  }
   status.textContent = D.stop.complete ? "" : "run stopped at t = " + D.stop.t + " s: " + D.stop.message;
   flushErrors();
   document.body.setAttribute("data-ready", "1");
