@@ -46,7 +46,7 @@ py::list DiagnosticList(const std::vector<Diagnostic>& ds) {
 }
 
 // (model or None, errors, warnings)
-py::tuple Compile(const std::string& text, const std::string& source, const ParameterOverrides& overrides) {
+py::tuple CompileText(const std::string& text, const std::string& source, const ParameterOverrides& overrides) {
   LoadResult r;
   {
     py::gil_scoped_release release;
@@ -382,7 +382,7 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def_property_readonly("order", [](const PyMotion& m) { return m.motion->layout().options().order; })
       .def_property_readonly("si", [](const PyMotion& m) { return m.motion->layout().options().si; })
       .def_property_readonly("forces", [](const PyMotion& m) { return m.motion->layout().options().forces; });
-  mod.def("compile", &Compile, py::arg("text"), py::arg("source"), py::arg("overrides") = ParameterOverrides{});
+  mod.def("compile", &CompileText, py::arg("text"), py::arg("source"), py::arg("overrides") = ParameterOverrides{});
   mod.def("motion_from_state", &MotionFromState, py::arg("model"), py::arg("order"), py::arg("si"), py::arg("bodies"),
           py::arg("outputs"), py::arg("forces"), py::arg("values"), py::arg("complete"), py::arg("stop"),
           py::arg("message"), py::arg("sensitivity") = std::vector<std::string>{});

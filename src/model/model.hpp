@@ -17,6 +17,8 @@
 
 namespace mechkin {
 
+struct MechanismSpec;  // spec/spec.hpp: what the file says (a model keeps it for its variants)
+
 /// Index of a moving body in Model::bodies, or kGround.
 using BodyIndex = int;
 constexpr BodyIndex kGround = -1;
@@ -152,8 +154,9 @@ struct Model {
   Expect expect;
   double characteristic_length = 1.0;  // m; scale for every length tolerance
   std::vector<Parameter> parameters;
-  /// The file's text, to compile variants with other parameter values.
-  std::shared_ptr<const std::string> document;
+  /// What the file says (shared by every variant), to compile variants with other
+  /// parameter values; the model keeps no file text.
+  std::shared_ptr<const MechanismSpec> spec;
 
   const Parameter* FindParameter(const std::string& name) const;
 

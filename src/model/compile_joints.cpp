@@ -1,0 +1,167 @@
+// Joints (frames in both bodies' coordinates) and drivers.
+#include <algorithm>
+#include <cmath>
+
+#include "model/compiler.hpp"
+
+namespace mechkin {
+
+namespace {
+
+std::optional<JointType> JointTypeFromName(const std::string& name) {
+  for (JointType t : {JointType::Revolute, JointType::Prismatic, JointType::Screw, JointType::Cylindrical,
+                      JointType::Universal, JointType::Spherical, JointType::Planar, JointType::Distance})
+    if (name == JointTypeName(t)) return t;
+  return std::nullopt;
+}
+
+}  // namespace
+
+void Compiler::CompileJoint(const JointSpec& j) {
+  const std::string& ptr = j.pointer;
+  const auto& name = j.name;
+  auto b1 = BodyRef(j.body1, "body1", ptr);
+  auto b2 = BodyRef(j.body2, "body2", ptr);
+  const std::optional<JointType> type = j.type ? JointTypeFromName(*j.type) : std::nullopt;
+  bool ok = name && b1 && b2 && type;
+  if (name) {
+    if (joint_index_.count(*name)) {
+      Error(ptr + "/name", "duplicate joint name '" + *name + "'", "give every joint a unique name");
+      ok = false;
+    }
+    joint_index_.emplace(*name, -2);
+  }
+  if (b1 && b2 && *b1 == *b2) {
+    Error(ptr + "/body2", "joint connects body '" + model_.BodyName(*b1) + "' to itself",
+          "a joint needs two different bodies (either may be ground)");
+    ok = false;
+  }
+  if (!type) return;
+  CompileJointGeometry(j, *type, ok ? &*name : nullptr, b1 ? *b1 : kGround, b2 ? *b2 : kGround);
+}
+
+// The geometry of a joint of known type, validated; adds the joint when `name`
+// is given (the joint's name, bodies and type were valid).
+void Compiler::CompileJointGeometry(const JointSpec& j, JointType type, const std::string* name, BodyIndex body1,
+                                    BodyIndex body2) {
+  const std::string& ptr = j.pointer;
+  bool ok = name != nullptr;
+  Joint joint;
+  joint.type = type;
+  std::optional<Vec3> origin, axis, axis1, axis2, normal, p1, p2;
+  auto read = [&](const std::optional<Vector3Spec>& spec, bool length, std::optional<Vec3>* out) {
+    if (!spec) return;
+    *out = length ? LengthVector(spec) : Vector(spec, true);
+    ok = ok && out->has_value();
+  };
+  read(j.origin, true, &origin);
+  read(j.axis, false, &axis);
+  read(j.axis1, false, &axis1);
+  read(j.axis2, false, &axis2);
+  read(j.normal, false, &normal);
+  read(j.point1, true, &p1);
+  read(j.point2, true, &p2);
+  if (!j.geometry_complete) ok = false;
+  if (type == JointType::Screw) ok = CompileScrewPitch(j, &joint) && ok;
+  if (axis1 && axis2) {
+    const double c = axis1->normalized().dot(axis2->normalized());
+    if (std::abs(c) > 1e-6) {
+      Error(ptr + "/axis2",
+            "universal joint axes are not perpendicular (angle " +
+                std::to_string(std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI) + " deg)",
+            "make axis2 perpendicular to axis1 (the cross axes of a Hooke joint are at 90 deg)");
+      ok = false;
+    }
+  }
+  if (type == JointType::Distance && p1 && p2) ok = CompileDistanceLength(j, *p1, *p2, ok, &joint);
+  if (!ok) return;
+  joint.body1 = body1;
+  joint.body2 = body2;
+  AddJoint(*name, origin, axis, axis1, axis2, normal, p1, p2, &joint);
+}
+
+bool Compiler::CompileScrewPitch(const JointSpec& j, Joint* joint) {
+  const std::string& ptr = j.pointer;
+  auto pitch = Value(j.pitch);
+  if (pitch && *pitch == 0) {
+    Error(ptr + "/pitch", "screw pitch is zero", "use a revolute joint, or give the lead per revolution");
+    return false;
+  }
+  if (pitch && std::abs(*pitch * length_) > kMaxCoordinate) {
+    Error(ptr + "/pitch", "screw pitch is beyond 1e12 m per revolution", "check the number and the length unit");
+    return false;
+  }
+  if (!pitch) return false;
+  joint->pitch = *pitch * length_;
+  return true;
+}
+
+// A distance link's length: "length", or the design distance of its two points.
+bool Compiler::CompileDistanceLength(const JointSpec& j, const Vec3& p1, const Vec3& p2, bool ok, Joint* joint) {
+  const std::string& ptr = j.pointer;
+  double len = (p2 - p1).norm();
+  if (j.length) {
+    auto l = Value(j.length);
+    if (!l)
+      ok = false;
+    else if (!(*l > 0)) {
+      Error(ptr + "/length", "distance length must be positive", "give the link length");
+      ok = false;
+    } else
+      len = *l * length_;
+    if (len > kMaxCoordinate) {
+      Error(ptr + "/length", "distance length is beyond 1e12 m", "check the number and the length unit");
+      ok = false;
+    }
+  }
+  if (ok && !(len > 0)) {
+    Error(ptr + "/point2", "distance joint points coincide at the design pose and no length is given",
+          "a distance link of zero length is singular; use a spherical joint");
+    ok = false;
+  }
+  joint->length = len;
+  return ok;
+}
+
+void Compiler::AddJoint(const std::string& name, const std::optional<Vec3>& origin, const std::optional<Vec3>& axis,
+                        const std::optional<Vec3>& axis1, const std::optional<Vec3>& axis2,
+                        const std::optional<Vec3>& normal, const std::optional<Vec3>& p1,
+                        const std::optional<Vec3>& p2, Joint* joint_ptr) {
+  Joint& joint = *joint_ptr;
+  joint.name = name;
+  JointFrame global;
+  switch (joint.type) {
+    case JointType::Revolute:
+    case JointType::Prismatic:
+    case JointType::Screw:
+    case JointType::Cylindrical:
+      global = MakeFrame(*origin, *axis);
+      break;
+    case JointType::Planar:
+      global = MakeFrame(*origin, *normal);
+      break;
+    case JointType::Universal:
+      global = MakeFrame(*origin, *axis1, *axis2);
+      break;
+    case JointType::Spherical:
+      global.origin = *origin;
+      break;
+    case JointType::Distance:
+      break;
+  }
+  if (joint.type == JointType::Distance) {
+    joint.frame1.origin = LocalPoint(joint.body1, *p1);
+    joint.frame2.origin = LocalPoint(joint.body2, *p2);
+  } else {
+    joint.frame1 = LocalFrame(joint.body1, global);
+    joint.frame2 = LocalFrame(joint.body2, global);
+    if (joint.type == JointType::Universal) {
+      // body2 carries axis2 as its h (constraints.md §5, U row).
+      joint.frame2 = LocalFrame(joint.body2, MakeFrame(*origin, *axis2, *axis1));
+    }
+  }
+  joint_index_[joint.name] = static_cast<int>(model_.joints.size());
+  model_.joints.push_back(joint);
+}
+
+}  // namespace mechkin

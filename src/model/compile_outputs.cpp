@@ -1,0 +1,239 @@
+// Outputs, loads and functions of time.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "model/compiler.hpp"
+
+namespace mechkin {
+
+std::optional<TimeFunction> Compiler::CompileFunction(const FunctionSpec& f, double scale) {
+  if (f.kind == FunctionSpec::Kind::Invalid) return std::nullopt;  // reported by the reader
+  if (f.kind == FunctionSpec::Kind::Table) return CompileTable(f, scale);
+  if (UsesFailedParameter(f.text)) return std::nullopt;
+  try {
+    auto e = std::make_shared<Expression>(Expression::Parse(f.text, &symbols_));
+    return TimeFunction(e, scale);
+  } catch (const ExpressionError& err) {
+    const std::string fix = UnknownNameFix(err);
+    Error(f.pointer, std::string("bad expression at column ") + std::to_string(err.column) + ": " + err.what(),
+          !fix.empty() && !symbols_.empty()
+              ? fix
+              : "expressions use t, numbers, + - * / ^, parentheses, pi and sin cos tan asin acos atan atan2 exp log sqrt");
+    return std::nullopt;
+  }
+}
+
+// A table's spline, with a warning where the smooth interpolation rings.
+std::optional<TimeFunction> Compiler::CompileTable(const FunctionSpec& f, double scale) {
+  const Interpolation how = f.interpolation == "linear" ? Interpolation::Linear
+                            : f.interpolation == "cubic" ? Interpolation::Cubic
+                                                         : Interpolation::Quintic;
+  try {
+    auto spline = std::make_shared<TableSpline>(f.times, f.values, how);
+    int k = 0;
+    const double over = spline->MaxOvershoot(&k), range = spline->ValueRange();
+    if (range > 0 && over > 0.05 * range) {
+      std::ostringstream o;
+      o << "the smooth interpolation overshoots the data by " << over << " (" << std::lround(100 * over / range)
+        << " % of the table's range) between t = " << spline->knot(k) << " and " << spline->knot(k + 1) << " s";
+      Warn(f.pointer + "/table/" + std::to_string(k), o.str(),
+           "add rows where the data turns sharply, or use \"interpolation\": \"linear\" (velocity then jumps at the rows)");
+    }
+    return TimeFunction(spline, scale);
+  } catch (const std::exception& e) {
+    Error(f.pointer + "/table", e.what());
+    return std::nullopt;
+  }
+}
+
+void Compiler::CompileOutput(const OutputSpec& o) {
+  bool ok = o.name && o.type;
+  if (o.name) ok = CheckOutputName(*o.name, o.pointer) && ok;
+  if (!ok) return;
+  Output out;
+  if (!CompileOutputGeometry(o, &out)) return;
+  out.name = *o.name;
+  model_.outputs.push_back(out);
+}
+
+bool Compiler::CheckOutputName(const std::string& name, const std::string& ptr) {
+  bool ok = true;
+  if (output_names_.count(name)) {
+    Error(ptr + "/name", "duplicate output name '" + name + "'", "give every output a unique name");
+    ok = false;
+  } else if (body_index_.count(name)) {
+    Error(ptr + "/name", "output name '" + name + "' is also a body name", "table columns would clash; rename it");
+    ok = false;
+  } else if (name == "t" || name == "newton_iterations" || name == "residual" || name == "condition" ||
+             name.rfind("error_bound", 0) == 0) {
+    Error(ptr + "/name", "output name '" + name + "' is the name of a built-in table column",
+          "rename the output (t, newton_iterations, residual, condition and error_bound* are reserved)");
+    ok = false;
+  }
+  output_names_.insert(name);
+  return ok;
+}
+
+bool Compiler::CompileOutputGeometry(const OutputSpec& o, Output* out) {
+  const std::string& type = *o.type;
+  const std::string& ptr = o.pointer;
+  if (type == "point") {
+    out->kind = OutputKind::Point;
+    auto b = BodyRef(o.body, "body", ptr);
+    auto p = LengthVector(o.point);
+    if (!b || !p) return false;
+    out->body1 = *b;
+    out->point1 = LocalPoint(*b, *p);
+    if (o.frame) {
+      auto f = BodyRef(o.frame, "frame", ptr);
+      if (!f) return false;
+      out->frame = *f;
+    }
+    return true;
+  }
+  if (type == "velocity_ratio") return out->kind = OutputKind::VelocityRatio, CompileVelocityRatio(o, out);
+  if (type == "orientation") return out->kind = OutputKind::Orientation, CompileOrientationOutput(o, out);
+  if (type == "joint") return out->kind = OutputKind::JointCoordinate, CompileJointOutput(o, out);
+  if (type == "angle") return out->kind = OutputKind::Angle, CompileAngleOutput(o, out);
+  out->kind = OutputKind::Distance;
+  auto b1 = BodyRef(o.body1, "body1", ptr);
+  auto b2 = BodyRef(o.body2, "body2", ptr);
+  auto p1 = LengthVector(o.point1);
+  auto p2 = LengthVector(o.point2);
+  if (!b1 || !b2 || !p1 || !p2) return false;
+  out->body1 = *b1;
+  out->body2 = *b2;
+  out->point1 = LocalPoint(*b1, *p1);
+  out->point2 = LocalPoint(*b2, *p2);
+  return true;
+}
+
+bool Compiler::CompileJointOutput(const OutputSpec& o, Output* out) {
+  const std::string& ptr = o.pointer;
+  const auto index = FindJoint(o.joint, ptr, false);
+  if (!index || *index < 0) return false;
+  const Joint& j = model_.joints[*index];
+  if (j.type == JointType::Distance) {
+    Error(ptr + "/joint", "'" + j.name + "' is a distance link: its length does not change",
+          "use a distance output between its two points, or an angle output");
+    return false;
+  }
+  if (o.sequence && j.type != JointType::Spherical) {
+    Error(ptr + "/sequence", "'sequence' applies to spherical joints; '" + j.name + "' is " + JointTypeName(j.type),
+          "remove it");
+    return false;
+  }
+  out->sequence = "ZYX";
+  if (o.sequence && !CompileSequence(o, out)) return false;
+  out->joint = *index;
+  out->body1 = j.body1;
+  out->body2 = j.body2;
+  return true;
+}
+
+// {"type": "velocity_ratio", "output", "input"}: d(output)/d(input); `output` an
+// earlier one-coordinate output (revolute or prismatic joint, distance, angle),
+// `input` such an output or a driver.
+bool Compiler::CompileVelocityRatio(const OutputSpec& o, Output* out) {
+  const std::string& ptr = o.pointer;
+  if (!o.output || !o.input) return false;
+  const std::string &of = *o.output, &in = *o.input;
+  std::vector<std::string> scalar;
+  int of_index = -1, in_output = -1, in_driver = -1;
+  for (size_t k = 0; k < model_.outputs.size(); ++k) {
+    if (!IsScalarOutput(model_.outputs[k])) continue;
+    scalar.push_back(model_.outputs[k].name);
+    if (model_.outputs[k].name == of) of_index = static_cast<int>(k);
+    if (model_.outputs[k].name == in) in_output = static_cast<int>(k);
+  }
+  for (size_t k = 0; k < model_.drivers.size(); ++k)
+    if (model_.drivers[k].name == in) in_driver = static_cast<int>(k);
+  const std::string fix = "name an earlier output with one coordinate (revolute or prismatic joint, distance, "
+                          "angle)" + (scalar.empty() ? std::string() : ": " + Join(scalar));
+  if (of_index < 0) Error(ptr + "/output", "'" + Shorten(of) + "' is not such an output", fix);
+  if (in_output < 0 && in_driver < 0)
+    Error(ptr + "/input", "'" + Shorten(in) + "' is neither such an output nor a driver", fix + ", or a driver");
+  if (of_index < 0 || (in_output < 0 && in_driver < 0)) return false;
+  out->ratio_of = of_index;
+  out->ratio_input_output = in_output;
+  out->ratio_input_driver = in_output < 0 ? in_driver : -1;
+  return true;
+}
+
+bool Compiler::IsScalarOutput(const Output& o) const {
+  if (o.kind == OutputKind::Distance || o.kind == OutputKind::Angle) return true;
+  if (o.kind != OutputKind::JointCoordinate) return false;
+  const JointType t = model_.joints[o.joint].type;
+  return t == JointType::Revolute || t == JointType::Prismatic;
+}
+
+// {"type": "orientation", "body", "relative_to"?, "sequence"}.
+bool Compiler::CompileOrientationOutput(const OutputSpec& o, Output* out) {
+  auto b = BodyRef(o.body, "body", o.pointer);
+  std::optional<BodyIndex> rel = kGround;
+  if (o.relative_to) rel = BodyRef(o.relative_to, "relative_to", o.pointer);
+  if (!b || !rel || !CompileSequence(o, out)) return false;
+  out->body1 = *rel;
+  out->body2 = *b;
+  return true;
+}
+
+bool Compiler::CompileSequence(const OutputSpec& o, Output* out) {
+  if (!o.sequence) return false;
+  const std::string& seq = *o.sequence;
+  static const std::vector<std::string> kSequences = {
+      "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
+      "axis-angle", "euler-parameters"};
+  if (std::find(kSequences.begin(), kSequences.end(), seq) == kSequences.end()) {
+    const std::string g = DidYouMean(seq, kSequences);
+    Error(o.pointer + "/sequence", "unknown sequence '" + Shorten(seq) + "'",
+          (g.empty() ? "" : "did you mean '" + g + "'? ") + "sequences: " + Join(kSequences) +
+              " (rotation sequences are intrinsic: ZYX = yaw about z, then pitch about the new y, then roll)");
+    return false;
+  }
+  out->sequence = seq;
+  return true;
+}
+
+// {"type": "angle", "body1", "vector1", "body2", "vector2", "about"?}: directions in
+// global design coordinates, stored as unit vectors fixed in their bodies.
+bool Compiler::CompileAngleOutput(const OutputSpec& o, Output* out) {
+  const std::string& ptr = o.pointer;
+  auto b1 = BodyRef(o.body1, "body1", ptr);
+  auto b2 = BodyRef(o.body2, "body2", ptr);
+  std::vector<Vec3> global;  // the directions as written, for the parallel check
+  auto direction = [&](const std::optional<Vector3Spec>& spec, std::optional<BodyIndex> body) -> std::optional<Vec3> {
+    auto v = Vector(spec, true);
+    if (!v) return std::nullopt;
+    if (!(v->norm() > 0)) {
+      Error(spec->pointer, "'" + spec->key + "' is the zero vector", "give a direction, e.g. [1, 0, 0]");
+      return std::nullopt;
+    }
+    global.push_back(v->normalized());
+    if (!body) return std::nullopt;
+    return Vec3((Pose(*body).second.transpose() * v->normalized()).normalized());
+  };
+  auto v1 = direction(o.vector1, b1);
+  auto v2 = direction(o.vector2, b2);
+  if (!b1 || !b2 || !v1 || !v2) return false;
+  out->body1 = *b1;
+  out->body2 = *b2;
+  out->vector1 = *v1;
+  out->vector2 = *v2;
+  if (o.about) {
+    auto a = direction(o.about, b1);
+    if (!a) return false;
+    for (size_t k = 0; k + 1 < global.size(); ++k)
+      if (global.back().cross(global[k]).norm() < 1e-6) {  // at the design pose
+        Error(ptr + "/about", "'about' is parallel to one of the two vectors: the signed angle about it is undefined",
+              "choose an axis across both vectors (e.g. their common normal)");
+        return false;
+      }
+    out->about = *a;
+    out->signed_about = true;
+  }
+  return true;
+}
+
+}  // namespace mechkin

@@ -1,0 +1,148 @@
+// Internal to src/model: the compile step's state, one section per method
+// (compile.cpp: values, header, parameters, units, analysis, expect, gravity;
+// compile_bodies.cpp; compile_joints.cpp (joints, drivers); compile_outputs.cpp
+// (outputs, loads, functions); compile_checks.cpp (the warning passes)).
+//
+// A failed element is known by name (index -2) so that references to it do not
+// produce a second, misleading error; a failed parameter likewise silences the
+// expressions that use it.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "model/compile.hpp"
+#include "model/frames.hpp"
+
+namespace mechkin {
+
+class Compiler {
+ public:
+  Compiler(const MechanismSpec& spec, const ParameterOverrides& overrides, DiagnosticLog* out)
+      : spec_(spec), overrides_(overrides), out_(*out) {}
+  /// Every section, then (when nothing failed) the warning passes.
+  std::optional<Model> Run();
+
+ private:
+  void Error(const std::string& ptr, const std::string& msg, const std::string& fix = "") { out_.Error(ptr, msg, fix); }
+  void Warn(const std::string& ptr, const std::string& msg, const std::string& fix = "") { out_.Warn(ptr, msg, fix); }
+  void Place(Section section, const std::string& element_pointer);
+
+  // Values (compile.cpp).
+  std::optional<double> Value(const Scalar& s);
+  std::optional<double> Value(const std::optional<Scalar>& s) { return s ? Value(*s) : std::nullopt; }
+  std::optional<double> ConstantExpression(const std::string& text, const std::string& p);
+  std::string UnknownNameFix(const ExpressionError& err) const;
+  bool UsesFailedParameter(const std::string& text) const;
+  std::optional<int> Integer(const std::optional<Scalar>& s, const std::string& key);
+  std::optional<Vec3> Vector(const std::optional<Vector3Spec>& v, bool nonzero);
+  std::optional<Vec3> VectorValue(const Vector3Spec& v, bool nonzero);
+  std::optional<Vec3> LengthVector(const std::optional<Vector3Spec>& v);
+  std::optional<BodyIndex> BodyRef(const std::optional<std::string>& name, const std::string& key,
+                                   const std::string& ptr);
+
+  // Sections (compile.cpp).
+  void CompileHeader();
+  void CompileParameters();
+  void ResolveParameters(const std::vector<size_t>& pending);
+  bool ResolveParameter(const ParameterSpec& ps);
+  void ReportCycles(const std::vector<size_t>& pending, const std::vector<size_t>& remaining,
+                    const std::vector<std::vector<size_t>>& deps);
+  void CompileUnits();
+  void CompileAnalysis();
+  void CompileBranch(const BranchSpec& b, Analysis* an);
+  void CompileExpect();
+  void CompileGravity();
+
+  // Bodies (compile_bodies.cpp).
+  void CompileBody(const BodySpec& b);
+  std::optional<Vec4> CompileOrientation(const OrientationSpec& o);
+  std::optional<Vec4> CompileRotationMatrix(const OrientationSpec& o);
+  std::optional<Inertia> CompileInertia(const InertiaSpec& in, const Vec3& r, const Vec4& euler);
+  std::optional<Mat3> CompileMatrix(const std::optional<std::array<Vector3Spec, 3>>& rows, const std::string& error,
+                                    const std::string& ptr);
+  std::optional<Mat3> CompilePrincipal(const InertiaSpec& in);
+  bool CheckInertiaTensor(const Mat3& J, const std::string& ptr);
+  std::optional<Shape> CompileShape(const ShapeSpec& o);
+
+  // Joints and drivers (compile_joints.cpp).
+  void CompileJoint(const JointSpec& j);
+  void CompileJointGeometry(const JointSpec& j, JointType type, const std::string* name, BodyIndex body1,
+                            BodyIndex body2);
+  bool CompileScrewPitch(const JointSpec& j, Joint* joint);
+  bool CompileDistanceLength(const JointSpec& j, const Vec3& p1, const Vec3& p2, bool ok, Joint* joint);
+  void AddJoint(const std::string& name, const std::optional<Vec3>& origin, const std::optional<Vec3>& axis,
+                const std::optional<Vec3>& axis1, const std::optional<Vec3>& axis2,
+                const std::optional<Vec3>& normal, const std::optional<Vec3>& p1, const std::optional<Vec3>& p2,
+                Joint* joint);
+  void CompileDriver(const DriverSpec& d);
+  bool DriverOnBody(const DriverSpec& d, Driver* drv);
+  bool DriverOnJoint(const DriverSpec& d, bool rotation, Driver* drv);
+  bool DriverOnCoordinate(const DriverSpec& d, Driver* drv);
+  bool DriverOnAngle(const DriverSpec& d, Driver* drv);
+  bool DriverBetweenPoints(const DriverSpec& d, Driver* drv);
+  std::optional<int> FindJoint(const std::optional<std::string>& name, const std::string& ptr, bool did_you_mean);
+
+  // Outputs, loads, functions (compile_outputs.cpp).
+  std::optional<TimeFunction> CompileFunction(const FunctionSpec& f, double scale);
+  std::optional<TimeFunction> CompileTable(const FunctionSpec& f, double scale);
+  void CompileOutput(const OutputSpec& o);
+  bool CheckOutputName(const std::string& name, const std::string& ptr);
+  bool CompileOutputGeometry(const OutputSpec& o, Output* out);
+  bool CompileJointOutput(const OutputSpec& o, Output* out);
+  bool CompileVelocityRatio(const OutputSpec& o, Output* out);
+  bool IsScalarOutput(const Output& o) const;
+  bool CompileOrientationOutput(const OutputSpec& o, Output* out);
+  bool CompileSequence(const OutputSpec& o, Output* out);
+  bool CompileAngleOutput(const OutputSpec& o, Output* out);
+  void CompileLoad(const LoadSpec& o);
+  bool CompileForceOrTorque(const LoadSpec& o, bool force, Load* load);
+  bool CompileSpring(const LoadSpec& o, Load* load);
+
+  // Warning passes (compile_checks.cpp).
+  void WarnFarPoints();
+  void WarnRadiansInDegrees(const Driver& drv, const std::string& ptr, double swing);
+  void WarnStrayJointPoints();
+  void WarnOddLengths();
+  void CheckDriverSpans();
+
+  // Frames of the design pose.
+  std::pair<Vec3, Mat3> Pose(BodyIndex b) const {
+    if (b == kGround) return {Vec3::Zero(), Mat3::Identity()};
+    return {model_.bodies[b].position, CalcA(model_.bodies[b].euler)};
+  }
+  Vec3 LocalPoint(BodyIndex b, const Vec3& global) const {
+    auto [r, A] = Pose(b);
+    return Vec3(A.transpose() * (global - r));
+  }
+  JointFrame LocalFrame(BodyIndex b, const JointFrame& global) const {
+    auto [r, A] = Pose(b);
+    return ToLocal(global, r, A);
+  }
+  // A driver between body1 and body2 on one global frame, held in each body's axes.
+  void SetDriverFrames(Driver* drv, BodyIndex body1, BodyIndex body2, const JointFrame& global) const {
+    drv->body1 = body1;
+    drv->body2 = body2;
+    drv->frame1 = LocalFrame(body1, global);
+    drv->frame2 = LocalFrame(body2, global);
+  }
+
+  static constexpr double kMaxCoordinate = 1e12;  // m
+
+  const MechanismSpec& spec_;
+  const ParameterOverrides& overrides_;
+  DiagnosticLog& out_;
+  Model model_;
+  ExpressionSymbols symbols_;
+  std::set<std::string> failed_parameters_;
+  std::map<std::string, BodyIndex> body_index_;
+  std::map<std::string, int> joint_index_;
+  std::set<std::string> driver_names_, output_names_;
+  std::vector<std::string> driver_pointers_;  // per model driver, its place in the file
+  double length_ = 1, angle_ = 1;
+};
+
+}  // namespace mechkin

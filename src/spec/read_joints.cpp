@@ -1,0 +1,147 @@
+// "joints" and "drivers".
+#include <algorithm>
+
+#include "spec/json_reader.hpp"
+
+namespace mechkin::spec_reader {
+
+namespace {
+
+using StringField = std::pair<const char*, std::optional<std::string>*>;
+using VectorField = std::pair<const char*, std::optional<Vector3Spec>*>;
+
+struct JointKeys {
+  const char* name;
+  std::vector<std::string> geometry;  // required geometry keys
+  std::vector<std::string> optional;
+};
+
+const std::vector<JointKeys>& JointTypes() {
+  static const std::vector<JointKeys> kTypes = {
+      {"revolute", {"origin", "axis"}, {}},
+      {"prismatic", {"origin", "axis"}, {}},
+      {"screw", {"origin", "axis", "pitch"}, {}},
+      {"cylindrical", {"origin", "axis"}, {}},
+      {"universal", {"origin", "axis1", "axis2"}, {}},
+      {"spherical", {"origin"}, {}},
+      {"planar", {"origin", "normal"}, {}},
+      {"distance", {"point1", "point2"}, {"length"}},
+  };
+  return kTypes;
+}
+
+std::vector<std::string> JointTypeNames() {
+  std::vector<std::string> names;
+  for (const auto& t : JointTypes()) names.push_back(t.name);
+  return names;
+}
+
+const JointKeys* FindJointType(JsonReader& rd, const std::optional<std::string>& type, const std::string& ptr) {
+  if (!type) return nullptr;
+  for (const auto& t : JointTypes())
+    if (*type == t.name) return &t;
+  const std::string g = DidYouMean(*type, JointTypeNames());
+  rd.Error(ptr + "/type", "unknown joint type '" + Shorten(*type) + "'",
+           (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(JointTypeNames()));
+  return nullptr;
+}
+
+// The keys a driver of `type` takes besides name, description, type, function.
+void DriverKeys(JsonReader& rd, const std::optional<std::string>& type, bool by_body, const std::string& ptr,
+                std::vector<std::string>* allowed, std::vector<std::string>* required) {
+  auto add = [&](std::initializer_list<const char*> keys) {
+    allowed->insert(allowed->end(), keys.begin(), keys.end());
+    required->insert(required->end(), keys.begin(), keys.end());
+  };
+  if (type && *type == "rotation" && by_body) {
+    add({"body", "axis"});
+  } else if (type && (*type == "rotation" || *type == "translation")) {
+    add({"joint"});
+  } else if (type && *type == "distance") {
+    add({"body1", "point1", "body2", "point2"});
+  } else if (type && *type == "coordinate") {
+    add({"body", "point", "axis"});
+    allowed->push_back("axis_body");
+  } else if (type && *type == "angle") {
+    add({"body1", "body2", "about"});
+    allowed->push_back("vector");
+  } else {
+    if (type) {
+      const std::string g = DidYouMean(*type, {"rotation", "translation", "distance", "coordinate", "angle"});
+      rd.Error(ptr + "/type", "unknown driver type '" + Shorten(*type) + "'",
+               (g.empty() ? "" : "did you mean '" + g + "'? ") +
+                   "types: rotation, translation, distance, coordinate, angle");
+    }
+    allowed->insert(allowed->end(), {"joint", "body", "axis", "body1", "point1", "body2", "point2", "point",
+                                     "axis_body", "about", "vector"});
+  }
+}
+
+}  // namespace
+
+void ReadJoint(JsonReader& rd, const json& jj, const std::string& ptr, MechanismSpec* spec) {
+  if (!jj.is_object()) {
+    rd.Error(ptr, "a joint must be a JSON object, not " + TypeName(jj));
+    return;
+  }
+  JointSpec joint;
+  joint.pointer = ptr;
+  const auto type = rd.String(jj, "type", ptr);
+  const JointKeys* info = FindJointType(rd, type, ptr);
+  std::vector<std::string> allowed = {"name", "description", "type", "body1", "body2"};
+  std::vector<std::string> required = {"name", "type", "body1", "body2"};
+  for (const auto& t : JointTypes()) {
+    if (info && info != &t) continue;
+    allowed.insert(allowed.end(), t.geometry.begin(), t.geometry.end());
+    allowed.insert(allowed.end(), t.optional.begin(), t.optional.end());
+    if (info) required.insert(required.end(), t.geometry.begin(), t.geometry.end());
+  }
+  rd.CheckObject(jj, ptr, allowed, required, info ? std::string("a ") + info->name + " joint" : "a joint");
+  joint.name = rd.Name(jj, ptr, "joint");
+  joint.body1 = rd.String(jj, "body1", ptr);
+  joint.body2 = rd.String(jj, "body2", ptr);
+  if (info) joint.type = info->name;
+  joint.origin = rd.Vector(jj, "origin", ptr);
+  joint.axis = rd.Vector(jj, "axis", ptr);
+  joint.axis1 = rd.Vector(jj, "axis1", ptr);
+  joint.axis2 = rd.Vector(jj, "axis2", ptr);
+  joint.normal = rd.Vector(jj, "normal", ptr);
+  joint.point1 = rd.Vector(jj, "point1", ptr);
+  joint.point2 = rd.Vector(jj, "point2", ptr);
+  joint.pitch = rd.Number(jj, "pitch", ptr);
+  joint.length = rd.Number(jj, "length", ptr);
+  if (info)
+    joint.geometry_complete = std::all_of(info->geometry.begin(), info->geometry.end(),
+                                          [&](const std::string& key) { return jj.contains(key); });
+  spec->joints.push_back(std::move(joint));
+}
+
+void ReadDriver(JsonReader& rd, const json& d, const std::string& ptr, MechanismSpec* spec) {
+  if (!d.is_object()) {
+    rd.Error(ptr, "a driver must be a JSON object, not " + TypeName(d));
+    return;
+  }
+  DriverSpec drv;
+  drv.pointer = ptr;
+  drv.type = rd.String(d, "type", ptr);
+  drv.by_body = (d.contains("body") || d.contains("axis")) && !(drv.type && *drv.type == "coordinate");
+  std::vector<std::string> allowed = {"name", "description", "type", "function"};
+  std::vector<std::string> required = {"name", "type", "function"};
+  DriverKeys(rd, drv.type, drv.by_body, ptr, &allowed, &required);
+  rd.CheckObject(d, ptr, allowed, required, drv.type ? "a " + *drv.type + " driver" : "a driver");
+  drv.name = rd.Name(d, ptr, "driver");
+  const bool known = drv.type && (*drv.type == "rotation" || *drv.type == "translation" || *drv.type == "distance" ||
+                                  *drv.type == "coordinate" || *drv.type == "angle");
+  const StringField strings[] = {{"joint", &drv.joint}, {"body", &drv.body}, {"body1", &drv.body1},
+                            {"body2", &drv.body2}, {"axis_body", &drv.axis_body}};
+  for (auto [key, field] : strings)
+    if (known && std::find(allowed.begin(), allowed.end(), key) != allowed.end()) *field = rd.String(d, key, ptr);
+  const VectorField vectors[] = {{"axis", &drv.axis}, {"point", &drv.point}, {"point1", &drv.point1},
+                            {"point2", &drv.point2}, {"about", &drv.about}, {"vector", &drv.vector}};
+  for (auto [key, field] : vectors)
+    if (known && std::find(allowed.begin(), allowed.end(), key) != allowed.end()) *field = rd.Vector(d, key, ptr);
+  if (d.contains("function")) drv.function = ReadFunction(rd, d.at("function"), ptr + "/function");
+  spec->drivers.push_back(std::move(drv));
+}
+
+}  // namespace mechkin::spec_reader

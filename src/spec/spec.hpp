@@ -1,0 +1,188 @@
+// The spec layer: plain structs mirroring a format-v1 mechanism file (docs/format.md).
+//
+// A spec is what the file says, in the file's units and by name: numbers that
+// may be parameter expressions stay unresolved (Scalar), bodies are referenced
+// by name, nothing is converted. Compile (src/model/compile.hpp) turns a spec
+// and parameter overrides into a Model; every variant of a sweep, a tolerance
+// study or `with_parameters` compiles the same spec, never the file text again.
+// Every element keeps its JSON pointer so that compile's diagnostics name it.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mechkin {
+
+/// A number of the file: a literal, an expression over the parameters, or a value
+/// the reader found unusable (its error is reported when the number is compiled,
+/// so that the diagnostics keep the file's order).
+struct Scalar {
+  enum class Kind { Number, Expression, Invalid };
+  Kind kind = Kind::Number;
+  double number = 0;
+  std::string text;     // Expression: its text; Invalid: the error message
+  std::string fix;      // Invalid: how to fix it
+  std::string pointer;  // JSON pointer of the value
+
+  static Scalar Of(double value, std::string pointer = "") {
+    Scalar s;
+    s.number = value;
+    s.pointer = std::move(pointer);
+    return s;
+  }
+  static Scalar Expr(std::string text, std::string pointer = "") {
+    Scalar s;
+    s.kind = Kind::Expression;
+    s.text = std::move(text);
+    s.pointer = std::move(pointer);
+    return s;
+  }
+};
+
+/// [x, y, z] of Scalars. `error` non-empty: the value was not 3 numbers (reported at compile).
+struct Vector3Spec {
+  std::array<Scalar, 3> c;
+  std::string key;      // the key naming it in messages ("axis", "row", ...)
+  std::string pointer;
+  std::string error;
+
+  static Vector3Spec Of(double x, double y, double z, std::string key = "", std::string pointer = "");
+};
+
+/// "orientation": one of axis+angle, euler_parameters, matrix.
+struct OrientationSpec {
+  enum class Form { AxisAngle, EulerParameters, Matrix };
+  Form form = Form::AxisAngle;
+  Vector3Spec axis;
+  Scalar angle;
+  std::array<Scalar, 4> euler;
+  std::array<std::array<Scalar, 3>, 3> matrix;
+  std::string pointer;
+  bool ok = true;  // false: the reader reported a structural error
+};
+
+/// "inertia": mass, centre (global design coordinates), moments or principal + axes.
+struct InertiaSpec {
+  std::optional<Scalar> mass;
+  std::optional<Vector3Spec> center, principal;
+  std::optional<std::array<Vector3Spec, 3>> moments, axes;  // rows
+  std::string moments_error, axes_error;  // "'moments' must be 3 rows of 3 numbers"
+  bool has_moments = false, has_principal = false, has_axes = false;
+  std::string pointer;
+  bool ok = true;
+};
+
+/// "shape" (drawing only): box, cylinder or sphere.
+struct ShapeSpec {
+  std::optional<std::string> type;
+  std::optional<Vector3Spec> center, size, axis;
+  std::optional<Scalar> radius, length;
+  std::string pointer;
+  bool ok = true;
+};
+
+struct BodySpec {
+  std::optional<std::string> name;  // nullopt: missing or invalid (reported)
+  std::optional<Vector3Spec> position;
+  std::optional<OrientationSpec> orientation;
+  std::optional<InertiaSpec> inertia;
+  std::optional<ShapeSpec> shape;
+  std::string pointer;
+};
+
+struct JointSpec {
+  std::optional<std::string> name;
+  std::optional<std::string> type;   // a known joint type name, or nullopt (reported)
+  std::optional<std::string> body1, body2;
+  std::optional<Vector3Spec> origin, axis, axis1, axis2, normal, point1, point2;
+  std::optional<Scalar> pitch, length;
+  bool geometry_complete = true;     // every required geometry key is present
+  std::string pointer;
+};
+
+/// A function of time: an expression in t or a table of (t, value) rows.
+struct FunctionSpec {
+  enum class Kind { Expression, Table, Invalid };
+  Kind kind = Kind::Expression;
+  std::string text;  // Expression
+  std::vector<double> times, values;  // Table
+  std::string interpolation = "quintic";
+  std::string pointer;
+};
+
+struct DriverSpec {
+  std::optional<std::string> name, type;  // type: rotation, translation, distance, coordinate, angle
+  bool by_body = false;                   // rotation of a body about an axis
+  std::optional<std::string> joint, body, body1, body2, axis_body;
+  std::optional<Vector3Spec> axis, point, point1, point2, about, vector;
+  std::optional<FunctionSpec> function;
+  std::string pointer;
+};
+
+struct OutputSpec {
+  std::optional<std::string> name, type;
+  std::optional<std::string> body, frame, joint, body1, body2, output, input, relative_to, sequence;
+  std::optional<Vector3Spec> point, point1, point2, vector1, vector2, about;
+  std::string pointer;
+};
+
+struct LoadSpec {
+  std::optional<std::string> name;
+  std::string type;  // force, torque, spring
+  std::optional<std::string> body, body1, body2, frame;
+  std::optional<Vector3Spec> point, point1, point2;
+  std::optional<std::array<FunctionSpec, 3>> components;
+  std::string components_error;
+  std::optional<Scalar> stiffness, free_length, damping, preload;
+  std::string pointer;
+};
+
+struct ParameterSpec {
+  std::string name;
+  std::optional<Scalar> value;  // nullopt: the object form lacks "value" (reported)
+  std::optional<double> tolerance, min, max;
+};
+
+struct BranchSpec {
+  std::vector<std::pair<std::string, Scalar>> joints;  // joint name, approximate coordinate
+};
+
+struct AnalysisSpec {
+  std::optional<Scalar> start, end, steps;
+  std::optional<BranchSpec> branch;
+  bool ok = true;
+};
+
+struct UnitsSpec {
+  std::optional<std::string> length, angle, mass;
+};
+
+struct ExpectSpec {
+  std::optional<Scalar> grubler, mobility, redundant, idle;
+  std::optional<std::string> driven;
+};
+
+struct MechanismSpec {
+  std::optional<Scalar> version;  // "mechkin"
+  std::string name, description;
+  std::string source;             // the file name (or "inline")
+  std::optional<UnitsSpec> units;
+  std::vector<ParameterSpec> parameters;
+  std::vector<BodySpec> bodies;
+  std::vector<JointSpec> joints;
+  std::vector<DriverSpec> drivers;
+  std::optional<AnalysisSpec> analysis;
+  std::vector<OutputSpec> outputs;
+  std::optional<ExpectSpec> expect;
+  std::optional<Vector3Spec> gravity;
+  std::vector<LoadSpec> loads;
+  /// False when the reader reported errors: compile then reports the values'
+  /// errors too but builds no model.
+  bool valid = true;
+};
+
+}  // namespace mechkin
