@@ -3,7 +3,6 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <functional>
-#include <map>
 #include <cmath>
 #include <random>
 #include <set>
@@ -240,55 +239,87 @@ Eigen::MatrixXd GroupConstraints(const Model& model, const std::vector<int>& g, 
   return S;
 }
 
-// A direction of q̇ that moves only a few bodies: body → its 6 entries, by body.
-using SparseMotion = std::map<int, Eigen::Matrix<double, 6, 1>>;
+using Block6 = Eigen::Matrix<double, 6, 1>;
+// A direction of q̇ that moves only a few bodies: (body, its 6 entries), by body.
+using SparseMotion = std::vector<std::pair<int, Block6>>;
 
-double Dot(const SparseMotion& a, const SparseMotion& b) {
+double Norm(const SparseMotion& a) {
   double sum = 0;
-  for (const auto& [body, x] : a) {
-    const auto it = b.find(body);
-    if (it != b.end()) sum += x.dot(it->second);
-  }
-  return sum;
+  for (const auto& block : a) sum += block.second.squaredNorm();
+  return std::sqrt(sum);
 }
 
-double Norm(const SparseMotion& a) { return std::sqrt(Dot(a, a)); }
+// The idle motions found so far, orthonormal, and for each body the ones that move
+// it. A candidate is worked on in a dense per-body scratch that only its bodies
+// touch, so a candidate sharing no body with the basis costs its own size.
+class IdleBasis {
+ public:
+  explicit IdleBasis(int bodies) : moving_(bodies), work_(bodies, Block6::Zero()), in_work_(bodies, false) {}
 
-// The idle motions found so far, orthonormal, and for each body the ones that move it.
-struct IdleBasis {
-  std::vector<SparseMotion> motions;
-  std::vector<std::vector<size_t>> moving;  // body → indices into motions
+  // Joins `motion` to the basis when its part outside the basis' span is more
+  // than 1e-6 of it (two passes of Gram–Schmidt, in the order the basis was built).
+  bool AddIfIndependent(const SparseMotion& motion) {
+    for (const auto& [body, x] : motion) {
+      Touch(body);
+      work_[body] = x;
+    }
+    for (int pass = 0; pass < 2; ++pass) Orthogonalize();
+    std::sort(touched_.begin(), touched_.end());
+    double sum = 0;
+    for (int body : touched_) sum += work_[body].squaredNorm();
+    const double residual = std::sqrt(sum);
+    const bool independent = !(residual <= 1e-6 * Norm(motion));
+    if (independent) {
+      SparseMotion q;
+      for (int body : touched_) {
+        q.emplace_back(body, work_[body] / residual);
+        moving_[body].push_back(motions_.size());
+      }
+      motions_.push_back(std::move(q));
+    }
+    for (int body : touched_) {
+      work_[body].setZero();
+      in_work_[body] = false;
+    }
+    touched_.clear();
+    return independent;
+  }
 
-  // Two passes of Gram–Schmidt of v against the basis in the order it was built.
-  // A basis motion sharing no body with v (as v is at its turn) leaves v unchanged,
-  // so only those that share one are visited; v grows onto the bodies they move.
-  void Orthogonalize(SparseMotion* v) const {
-    for (int pass = 0; pass < 2; ++pass) {
-      std::set<size_t> pending;
-      for (const auto& entry : *v) pending.insert(moving[entry.first].begin(), moving[entry.first].end());
-      while (!pending.empty()) {
-        const size_t k = *pending.begin();
-        pending.erase(pending.begin());
-        const double c = Dot(motions[k], *v);
-        for (const auto& [body, x] : motions[k]) {
-          auto [it, added] = v->emplace(body, Eigen::Matrix<double, 6, 1>::Zero());
-          it->second -= c * x;
-          if (added)
-            for (size_t later : moving[body])
-              if (later > k) pending.insert(later);
+ private:
+  void Touch(int body) {
+    if (in_work_[body]) return;
+    in_work_[body] = true;
+    touched_.push_back(body);
+  }
+
+  // One pass: a basis motion sharing no body with the candidate (as it is at its
+  // turn) leaves it unchanged, so only those that share one are visited; the
+  // candidate grows onto the bodies they move.
+  void Orthogonalize() {
+    std::set<size_t> pending;
+    for (int body : touched_) pending.insert(moving_[body].begin(), moving_[body].end());
+    while (!pending.empty()) {
+      const size_t k = *pending.begin();
+      pending.erase(pending.begin());
+      double c = 0;
+      for (const auto& [body, x] : motions_[k])
+        if (in_work_[body]) c += x.dot(work_[body]);
+      for (const auto& [body, x] : motions_[k]) {
+        if (!in_work_[body]) {
+          Touch(body);
+          for (size_t later : moving_[body])
+            if (later > k) pending.insert(later);
         }
+        work_[body] -= c * x;
       }
     }
   }
 
-  void Add(SparseMotion v) {
-    const double norm = Norm(v);
-    for (auto& entry : v) {
-      entry.second /= norm;
-      moving[entry.first].push_back(motions.size());
-    }
-    motions.push_back(std::move(v));
-  }
+  std::vector<SparseMotion> motions_;
+  std::vector<std::vector<size_t>> moving_;  // body → indices into motions_
+  std::vector<Block6> work_;                 // the candidate, by body
+  std::vector<bool> in_work_;
+  std::vector<int> touched_;                 // the bodies the candidate moves
 };
 
 IdleFreedom DescribeIdle(const Model& model, const std::vector<int>& g, const Vec3& w) {
@@ -328,8 +359,7 @@ void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen:
     for (BodyIndex ob : {o.body1, o.body2})
       if (ob != kGround) outputs_on[ob].push_back(oi);
   }
-  IdleBasis idle;
-  idle.moving.resize(n);
+  IdleBasis idle(n);
   for (const auto& g : groups) {
     Eigen::MatrixXd T;
     const Eigen::MatrixXd S = GroupConstraints(model, g, state, Jf, outputs_on, &T);
@@ -337,12 +367,9 @@ void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen:
     for (int c = 0; c < gi.null_basis.cols(); ++c) {
       const Eigen::VectorXd local = T * gi.null_basis.col(c);
       SparseMotion motion;
-      for (size_t k = 0; k < g.size(); ++k) motion[g[k]] = local.segment<6>(6 * k);
+      for (size_t k = 0; k < g.size(); ++k) motion.emplace_back(g[k], local.segment<6>(6 * k));
       // New direction only if independent of the idle motions found so far.
-      SparseMotion v = motion;
-      idle.Orthogonalize(&v);
-      if (Norm(v) <= 1e-6 * Norm(motion)) continue;
-      idle.Add(std::move(v));
+      if (!idle.AddIfIndependent(motion)) continue;
       rep.idle.push_back(DescribeIdle(model, g, gi.null_basis.col(c).head<3>()));
     }
   }
