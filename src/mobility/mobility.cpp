@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <functional>
+#include <map>
 #include <cmath>
 #include <random>
 #include <set>
@@ -249,77 +250,73 @@ double Norm(const SparseMotion& a) {
   return std::sqrt(sum);
 }
 
-// The idle motions found so far, orthonormal, and for each body the ones that move
-// it. A candidate is worked on in a dense per-body scratch that only its bodies
-// touch, so a candidate sharing no body with the basis costs its own size.
+double Dot(const SparseMotion& a, const SparseMotion& b) {
+  double sum = 0;
+  for (size_t i = 0, k = 0; i < a.size() && k < b.size();) {
+    if (a[i].first < b[k].first) ++i;
+    else if (b[k].first < a[i].first) ++k;
+    else sum += a[i++].second.dot(b[k++].second);
+  }
+  return sum;
+}
+
+// The idle motions accepted so far (as found, each on its group's bodies) and the
+// Cholesky factor R of their Gram matrix G = MᵀM = RᵀR. A candidate m's part
+// outside their span has the squared norm |m|² − |y|² with Rᵀy = Mᵀm, and Mᵀm
+// is nonzero only for the accepted motions sharing a body with m: with R kept
+// sparse (motions that share no body give G's zeros), the solve visits only the
+// entries reachable from those, not a dense orthonormal basis filling in along
+// a chain of jointed pairs.
 class IdleBasis {
  public:
-  explicit IdleBasis(int bodies) : moving_(bodies), work_(bodies, Block6::Zero()), in_work_(bodies, false) {}
+  explicit IdleBasis(int bodies) : moving_(bodies) {}
 
-  // Joins `motion` to the basis when its part outside the basis' span is more
-  // than 1e-6 of it (two passes of Gram–Schmidt, in the order the basis was built).
+  // Joins `motion` to the accepted ones when its part outside their span is more
+  // than 1e-6 of it.
   bool AddIfIndependent(const SparseMotion& motion) {
-    for (const auto& [body, x] : motion) {
-      Touch(body);
-      work_[body] = x;
+    std::map<size_t, double> y;  // Rᵀy = Mᵀm, solved in index order
+    std::set<size_t> pending;
+    std::map<size_t, double> b;
+    for (const auto& block : motion)
+      for (size_t k : moving_[block.first]) pending.insert(k);
+    for (size_t k : pending) b[k] = Dot(motions_[k], motion);
+    while (!pending.empty()) {
+      const size_t j = *pending.begin();
+      pending.erase(pending.begin());
+      double v = b.count(j) ? b[j] : 0.0;
+      for (const auto& [i, r] : columns_[j])
+        if (const auto it = y.find(i); it != y.end()) v -= r * it->second;
+      v /= diagonal_[j];
+      y[j] = v;
+      for (size_t later : rows_[j]) pending.insert(later);
     }
-    for (int pass = 0; pass < 2; ++pass) Orthogonalize();
-    std::sort(touched_.begin(), touched_.end());
-    double sum = 0;
-    for (int body : touched_) sum += work_[body].squaredNorm();
-    const double residual = std::sqrt(sum);
-    const bool independent = !(residual <= 1e-6 * Norm(motion));
-    if (independent) {
-      SparseMotion q;
-      for (int body : touched_) {
-        q.emplace_back(body, work_[body] / residual);
-        moving_[body].push_back(motions_.size());
+    double projected = 0;
+    for (const auto& entry : y) projected += entry.second * entry.second;
+    const double whole = Norm(motion);
+    const double left = whole * whole - projected;
+    const double residual = left > 0 ? std::sqrt(left) : 0.0;
+    if (residual <= 1e-6 * whole) return false;
+    const size_t index = motions_.size();
+    std::vector<std::pair<size_t, double>> column;
+    for (const auto& [i, v] : y)
+      if (v != 0) {
+        column.emplace_back(i, v);
+        rows_[i].push_back(index);
       }
-      motions_.push_back(std::move(q));
-    }
-    for (int body : touched_) {
-      work_[body].setZero();
-      in_work_[body] = false;
-    }
-    touched_.clear();
-    return independent;
+    for (const auto& block : motion) moving_[block.first].push_back(index);
+    motions_.push_back(motion);
+    columns_.push_back(std::move(column));
+    diagonal_.push_back(residual);
+    rows_.emplace_back();
+    return true;
   }
 
  private:
-  void Touch(int body) {
-    if (in_work_[body]) return;
-    in_work_[body] = true;
-    touched_.push_back(body);
-  }
-
-  // One pass: a basis motion sharing no body with the candidate (as it is at its
-  // turn) leaves it unchanged, so only those that share one are visited; the
-  // candidate grows onto the bodies they move.
-  void Orthogonalize() {
-    std::set<size_t> pending;
-    for (int body : touched_) pending.insert(moving_[body].begin(), moving_[body].end());
-    while (!pending.empty()) {
-      const size_t k = *pending.begin();
-      pending.erase(pending.begin());
-      double c = 0;
-      for (const auto& [body, x] : motions_[k])
-        if (in_work_[body]) c += x.dot(work_[body]);
-      for (const auto& [body, x] : motions_[k]) {
-        if (!in_work_[body]) {
-          Touch(body);
-          for (size_t later : moving_[body])
-            if (later > k) pending.insert(later);
-        }
-        work_[body] -= c * x;
-      }
-    }
-  }
-
   std::vector<SparseMotion> motions_;
-  std::vector<std::vector<size_t>> moving_;  // body → indices into motions_
-  std::vector<Block6> work_;                 // the candidate, by body
-  std::vector<bool> in_work_;
-  std::vector<int> touched_;                 // the bodies the candidate moves
+  std::vector<std::vector<size_t>> moving_;                    // body → indices into motions_
+  std::vector<std::vector<std::pair<size_t, double>>> columns_;  // R above the diagonal, by column
+  std::vector<std::vector<size_t>> rows_;                      // R's nonzero columns, by row
+  std::vector<double> diagonal_;
 };
 
 IdleFreedom DescribeIdle(const Model& model, const std::vector<int>& g, const Vec3& w) {
