@@ -240,55 +240,83 @@ Eigen::MatrixXd GroupConstraints(const Model& model, const std::vector<int>& g, 
   return S;
 }
 
-// A direction of q̇ that moves only a few bodies: body → its 6 entries, by body.
-using SparseMotion = std::map<int, Eigen::Matrix<double, 6, 1>>;
+using Block6 = Eigen::Matrix<double, 6, 1>;
+// A direction of q̇ that moves only a few bodies: (body, its 6 entries), by body.
+using SparseMotion = std::vector<std::pair<int, Block6>>;
+
+double Norm(const SparseMotion& a) {
+  double sum = 0;
+  for (const auto& block : a) sum += block.second.squaredNorm();
+  return std::sqrt(sum);
+}
 
 double Dot(const SparseMotion& a, const SparseMotion& b) {
   double sum = 0;
-  for (const auto& [body, x] : a) {
-    const auto it = b.find(body);
-    if (it != b.end()) sum += x.dot(it->second);
+  for (size_t i = 0, k = 0; i < a.size() && k < b.size();) {
+    if (a[i].first < b[k].first) ++i;
+    else if (b[k].first < a[i].first) ++k;
+    else sum += a[i++].second.dot(b[k++].second);
   }
   return sum;
 }
 
-double Norm(const SparseMotion& a) { return std::sqrt(Dot(a, a)); }
+// The idle motions accepted so far (as found, each on its group's bodies) and the
+// Cholesky factor R of their Gram matrix G = MᵀM = RᵀR. A candidate m's part
+// outside their span has the squared norm |m|² − |y|² with Rᵀy = Mᵀm, and Mᵀm
+// is nonzero only for the accepted motions sharing a body with m: with R kept
+// sparse (motions that share no body give G's zeros), the solve visits only the
+// entries reachable from those, not a dense orthonormal basis filling in along
+// a chain of jointed pairs.
+class IdleBasis {
+ public:
+  explicit IdleBasis(int bodies) : moving_(bodies) {}
 
-// The idle motions found so far, orthonormal, and for each body the ones that move it.
-struct IdleBasis {
-  std::vector<SparseMotion> motions;
-  std::vector<std::vector<size_t>> moving;  // body → indices into motions
-
-  // Two passes of Gram–Schmidt of v against the basis in the order it was built.
-  // A basis motion sharing no body with v (as v is at its turn) leaves v unchanged,
-  // so only those that share one are visited; v grows onto the bodies they move.
-  void Orthogonalize(SparseMotion* v) const {
-    for (int pass = 0; pass < 2; ++pass) {
-      std::set<size_t> pending;
-      for (const auto& entry : *v) pending.insert(moving[entry.first].begin(), moving[entry.first].end());
-      while (!pending.empty()) {
-        const size_t k = *pending.begin();
-        pending.erase(pending.begin());
-        const double c = Dot(motions[k], *v);
-        for (const auto& [body, x] : motions[k]) {
-          auto [it, added] = v->emplace(body, Eigen::Matrix<double, 6, 1>::Zero());
-          it->second -= c * x;
-          if (added)
-            for (size_t later : moving[body])
-              if (later > k) pending.insert(later);
-        }
+  // Joins `motion` to the accepted ones when its part outside their span is more
+  // than 1e-6 of it.
+  bool AddIfIndependent(const SparseMotion& motion) {
+    std::map<size_t, double> y;  // Rᵀy = Mᵀm, solved in index order
+    std::set<size_t> pending;
+    std::map<size_t, double> b;
+    for (const auto& block : motion)
+      for (size_t k : moving_[block.first]) pending.insert(k);
+    for (size_t k : pending) b[k] = Dot(motions_[k], motion);
+    while (!pending.empty()) {
+      const size_t j = *pending.begin();
+      pending.erase(pending.begin());
+      double v = b.count(j) ? b[j] : 0.0;
+      for (const auto& [i, r] : columns_[j])
+        if (const auto it = y.find(i); it != y.end()) v -= r * it->second;
+      v /= diagonal_[j];
+      y[j] = v;
+      for (size_t later : rows_[j]) pending.insert(later);
+    }
+    double projected = 0;
+    for (const auto& entry : y) projected += entry.second * entry.second;
+    const double whole = Norm(motion);
+    const double left = whole * whole - projected;
+    const double residual = left > 0 ? std::sqrt(left) : 0.0;
+    if (residual <= 1e-6 * whole) return false;
+    const size_t index = motions_.size();
+    std::vector<std::pair<size_t, double>> column;
+    for (const auto& [i, v] : y)
+      if (v != 0) {
+        column.emplace_back(i, v);
+        rows_[i].push_back(index);
       }
-    }
+    for (const auto& block : motion) moving_[block.first].push_back(index);
+    motions_.push_back(motion);
+    columns_.push_back(std::move(column));
+    diagonal_.push_back(residual);
+    rows_.emplace_back();
+    return true;
   }
 
-  void Add(SparseMotion v) {
-    const double norm = Norm(v);
-    for (auto& entry : v) {
-      entry.second /= norm;
-      moving[entry.first].push_back(motions.size());
-    }
-    motions.push_back(std::move(v));
-  }
+ private:
+  std::vector<SparseMotion> motions_;
+  std::vector<std::vector<size_t>> moving_;                    // body → indices into motions_
+  std::vector<std::vector<std::pair<size_t, double>>> columns_;  // R above the diagonal, by column
+  std::vector<std::vector<size_t>> rows_;                      // R's nonzero columns, by row
+  std::vector<double> diagonal_;
 };
 
 IdleFreedom DescribeIdle(const Model& model, const std::vector<int>& g, const Vec3& w) {
@@ -328,8 +356,7 @@ void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen:
     for (BodyIndex ob : {o.body1, o.body2})
       if (ob != kGround) outputs_on[ob].push_back(oi);
   }
-  IdleBasis idle;
-  idle.moving.resize(n);
+  IdleBasis idle(n);
   for (const auto& g : groups) {
     Eigen::MatrixXd T;
     const Eigen::MatrixXd S = GroupConstraints(model, g, state, Jf, outputs_on, &T);
@@ -337,12 +364,9 @@ void FindIdleFreedoms(const Model& model, const SystemState& state, const Eigen:
     for (int c = 0; c < gi.null_basis.cols(); ++c) {
       const Eigen::VectorXd local = T * gi.null_basis.col(c);
       SparseMotion motion;
-      for (size_t k = 0; k < g.size(); ++k) motion[g[k]] = local.segment<6>(6 * k);
+      for (size_t k = 0; k < g.size(); ++k) motion.emplace_back(g[k], local.segment<6>(6 * k));
       // New direction only if independent of the idle motions found so far.
-      SparseMotion v = motion;
-      idle.Orthogonalize(&v);
-      if (Norm(v) <= 1e-6 * Norm(motion)) continue;
-      idle.Add(std::move(v));
+      if (!idle.AddIfIndependent(motion)) continue;
       rep.idle.push_back(DescribeIdle(model, g, gi.null_basis.col(c).head<3>()));
     }
   }

@@ -43,5 +43,34 @@ TEST(IdleFreedoms, SixForEveryFreeBodyOnBothRankPaths) {
   ExpectSixEach(sparse, 1000);
 }
 
+// A chain of n bodies hung from the ground by spherical joints, b0 to b{n−1}, the
+// joint points zig-zagging (or all on one line). Each body but the last spins about
+// the line through its two joint points (n − 1), the last about its one joint point
+// (3); each pair but the last turns about the line through its two outer joint
+// points, which moves its middle joint: new (n − 2); the last pair turns about its
+// one outer point, of which the turn about the line to the middle joint is the two
+// bodies' own spins (2 new). So 2n + 2 idle freedoms. On a line, every pair's turn
+// about the common line is its bodies' own spins: n + 4. Many pairs overlap along
+// the chain, so these test the independence check as well as the count.
+json SphericalChain(int n, bool zigzag) {
+  json j = FreeBodies(n);
+  for (int i = 0; i < n; ++i)
+    j["joints"].push_back({{"name", "s" + std::to_string(i)}, {"type", "spherical"},
+                           {"body1", i == 0 ? std::string("ground") : "b" + std::to_string(i - 1)},
+                           {"body2", "b" + std::to_string(i)},
+                           {"origin", {0.1 * i - 0.05, zigzag ? 0.01 * (i % 2) : 0.01, 0}}});
+  return j;
+}
+
+TEST(IdleFreedoms, SphericalChainsOnBothRankPaths) {
+  for (int n : {40, 300}) {
+    const MobilityReport zigzag = CalcMobility(testing_files::FromJson(SphericalChain(n, true)));
+    EXPECT_EQ(zigzag.rank_method, n > 200 ? "sparse-qr" : "svd");
+    EXPECT_EQ(static_cast<int>(zigzag.idle.size()), 2 * n + 2) << n;
+    const MobilityReport line = CalcMobility(testing_files::FromJson(SphericalChain(n, false)));
+    EXPECT_EQ(static_cast<int>(line.idle.size()), n + 4) << n;
+  }
+}
+
 }  // namespace
 }  // namespace mechkin
