@@ -42,7 +42,9 @@ Model ForFile(const benchmark::State& st, const std::string& which) {
 void WholeStep(benchmark::State& st, const std::string& which) {
   Model m = ForFile(st, which);
   const int steps = which == "slider" ? 360 : 40;
-  m.analysis = Analysis{0, which == "slider" ? 1.0 : 0.4, steps};
+  m.analysis = Analysis{};
+  m.analysis->end = which == "slider" ? 1.0 : 0.4;
+  m.analysis->steps = steps;
   AnalysisOptions o;
   o.order = 3;
   int rows = 0;

@@ -5,7 +5,11 @@
     motion = model.run()                 # a Motion; numpy views of the core's table
     motion.t, motion["piston.x_tt"], motion.body("rod").position(1)
     motion.to_pandas()                   # needs pandas
-    model.check().mobility               # the `mechkin check` report
+    model.check().mobility.redundant     # the `mechkin check` report, field for field
+    mechkin.sweep(model, [{"rod": 110}, {"rod": 130}])  # a pandas DataFrame, one row per variant
+
+Every front end validates through the same run request (mechkin.RunRequest):
+model.run(tol=5e-3) is refused with the message `mechkin run --tol 5e-3` prints.
 
 Models are immutable and pickle (as their file text); a Motion pickles too.
 Runs release the GIL, so a model can be run from several threads at once.
@@ -17,24 +21,13 @@ from numpy.lib.stride_tricks import as_strided as _as_strided
 
 from . import _mechkin
 
-__all__ = ["load", "loads", "Model", "Motion", "CheckReport", "RangeReport", "ToleranceReport", "FormatError",
-           "Diagnostic", "RunStop", "sweep"]
+__all__ = ["load", "loads", "Model", "Motion", "RunRequest", "CheckReport", "MobilityReport", "RangeReport",
+           "ToleranceReport", "FormatError", "Diagnostic", "RunStop", "sweep"]
 
-
-class Diagnostic(tuple):
-    """One problem of a file: (pointer, message, fix)."""
-    __slots__ = ()
-
-    def __new__(cls, pointer, message, fix):
-        return super().__new__(cls, (pointer, message, fix))
-
-    pointer = property(lambda self: self[0], doc="JSON pointer of the offending value ('' = whole file)")
-    message = property(lambda self: self[1], doc="what is wrong")
-    fix = property(lambda self: self[2], doc="how to fix it")
-
-    def __str__(self):
-        where = self.pointer or "(file)"
-        return "%s: %s%s" % (where, self.message, (" (fix: %s)" % self.fix) if self.fix else "")
+RunRequest = _mechkin.RunRequest
+CheckReport = _mechkin.CheckReport
+MobilityReport = _mechkin.MobilityReport
+Diagnostic = _mechkin.Diagnostic
 
 
 class FormatError(ValueError):
@@ -42,7 +35,7 @@ class FormatError(ValueError):
 
     def __init__(self, source, diagnostics):
         self.source = source
-        self.diagnostics = [Diagnostic(*d) for d in diagnostics]
+        self.diagnostics = [d if isinstance(d, Diagnostic) else Diagnostic(*d) for d in diagnostics]
         lines = ["%s: %d error(s)" % (source, len(self.diagnostics))] + ["  " + str(d) for d in self.diagnostics]
         super().__init__("\n".join(lines))
 
@@ -74,36 +67,12 @@ def loads(text_or_dict, source="<string>"):
     return _compile(text_or_dict, source)
 
 
-class CheckReport:
-    """The `mechkin check --format json` report of one file, as attributes."""
-
-    def __init__(self, data):
-        self._data = data
-
-    def __getattr__(self, key):
-        try:
-            return self._data[key]
-        except KeyError:
-            raise AttributeError(key) from None
-
-    @property
-    def ok(self):
-        return bool(self._data["valid"]) and all(e["held"] for e in self._data["expect"])
-
-    def to_dict(self):
-        return _json.loads(_json.dumps(self._data))
-
-    def __repr__(self):
-        m = self._data.get("mobility", {})
-        return "CheckReport(%r, mobility=%r, driven=%r)" % (self._data.get("name"), m.get("mobility"), m.get("driven"))
-
-
 class _Report:
     """A report of the core as attributes (its JSON form's keys), with the CLI's text
     as str(report). ok is False with .message saying why when it could not be made."""
 
-    def __init__(self, data, text):
-        self._data, self._text = data, text
+    def __init__(self, json_text, text):
+        self._data, self._text = _json.loads(json_text), text
 
     def __getattr__(self, key):
         try:
@@ -111,9 +80,10 @@ class _Report:
         except KeyError:
             raise AttributeError(key) from None
 
-    ok = property(lambda self: bool(self._data["ok"]))
+    ok = property(lambda self: bool(self._data["ok"]), doc="the report could be made (else .message says why)")
 
     def to_dict(self):
+        """The CLI's `--format json` object."""
         return _json.loads(_json.dumps(self._data))
 
     def __str__(self):
@@ -124,6 +94,7 @@ class RangeReport(_Report):
     """`mechkin range`: per driver its design value and both ends (kind, value, message)."""
 
     def __getitem__(self, driver):
+        """The driver's range: {driver, unit, design_value, lower, upper, ...}."""
         for d in self._data["drivers"]:
             if d["driver"] == driver:
                 return d
@@ -138,6 +109,7 @@ class ToleranceReport(_Report):
     """`mechkin tolerance`: per output column the worst case and RSS at every row."""
 
     def column(self, name):
+        """One output column's stack-up: {name, unit, worst_case, rss, contributions, ...}."""
         for c in self._data["columns"]:
             if c["name"] == name:
                 return c
@@ -158,21 +130,33 @@ class ToleranceReport(_Report):
 
 
 class Model:
-    """A compiled, immutable mechanism."""
+    """A compiled, immutable mechanism (load() or loads() make one).
+
+    Fields: name, source (the file), bodies, joints ([{name, type, body1, body2}]),
+    drivers, outputs, units ({length, angle}: the file's units, used by every table
+    unless run(si=True)), analysis ({start, end, steps} or None), warnings
+    ([Diagnostic]), parameters ({name: value}), parameter_info ({name: {value,
+    tolerance, min, max, expression}}).
+
+    Methods: run() -> Motion, check() -> CheckReport, range() -> RangeReport,
+    tolerance() -> ToleranceReport, with_parameters(**values) -> Model.
+    Models pickle (as their file text and parameter values)."""
 
     def __init__(self, core):
         self._core = core
         self._info = core.info()
 
-    name = property(lambda self: self._info["name"])
-    source = property(lambda self: self._info["source"])
-    bodies = property(lambda self: list(self._info["bodies"]))
-    joints = property(lambda self: [dict(j) for j in self._info["joints"]])
-    drivers = property(lambda self: list(self._info["drivers"]))
-    outputs = property(lambda self: list(self._info["outputs"]))
-    units = property(lambda self: dict(self._info["units"]))
-    analysis = property(lambda self: None if self._info["analysis"] is None else dict(self._info["analysis"]))
-    warnings = property(lambda self: [Diagnostic(*d) for d in self._info["warnings"]])
+    name = property(lambda self: self._info["name"], doc="the file's name")
+    source = property(lambda self: self._info["source"], doc="where the model was read from")
+    bodies = property(lambda self: list(self._info["bodies"]), doc="moving bodies' names, in file order")
+    joints = property(lambda self: [dict(j) for j in self._info["joints"]],
+                      doc="[{name, type, body1, body2}] in file order")
+    drivers = property(lambda self: list(self._info["drivers"]), doc="drivers' names")
+    outputs = property(lambda self: list(self._info["outputs"]), doc="outputs' names")
+    units = property(lambda self: dict(self._info["units"]), doc="{length, angle}: the file's units")
+    analysis = property(lambda self: None if self._info["analysis"] is None else dict(self._info["analysis"]),
+                        doc="{start, end, steps} of the file's analysis block, or None")
+    warnings = property(lambda self: list(self._info["warnings"]), doc="[Diagnostic]: the file's warnings")
     parameters = property(lambda self: {k: v["value"] for k, v in self._info["parameters"].items()},
                           doc="the file's parameters and their (resolved) values")
     parameter_info = property(lambda self: {k: dict(v) for k, v in self._info["parameters"].items()},
@@ -186,8 +170,9 @@ class Model:
         return _compile(self._core.text, self._core.source, merged)
 
     def check(self):
-        """Grübler count, rank mobility, redundancy, idle freedoms, driving status, expectations."""
-        return CheckReport(self._core.check())
+        """The `mechkin check` report (CheckReport): Grübler count, rank mobility,
+        redundancy, idle freedoms, driving status, expectations."""
+        return self._core.check()
 
     def range(self, driver=None, steps=360, span=None, tol=1e-10):
         """Range of motion of each driver (or of `driver`) from the design pose, like
@@ -205,19 +190,27 @@ class Model:
         return ToleranceReport(data, text)
 
     def run(self, order=3, tol=1e-10, solver="newton", formulation="omega", bodies=None, outputs=None,
-            si=False, start=None, end=None, steps=None, forces=None, sensitivity=None):
-        """The driven kinematic analysis. Returns a Motion; a run that stops early
-        returns the rows computed with motion.complete False and motion.stop saying why.
-        forces: driver efforts, joint reactions and energies (default: when the
-        file has inertia or loads; needs order >= 2, rates with order >= 3).
-        sensitivity: parameter names; adds d(column)/d(parameter) columns for every
-        body and output column (motion.sensitivity(column, parameter))."""
-        norm = lambda sel: None if sel is None else ([sel] if isinstance(sel, str) else list(sel))
-        bodies, outputs, sensitivity = norm(bodies), norm(outputs), norm(sensitivity) or []
-        core = self._core.run(int(order), float(tol), solver, formulation, bodies, outputs, bool(si),
-                              start, end, steps, forces, sensitivity)
-        return Motion(self, core, dict(order=int(order), si=bool(si), bodies=bodies, outputs=outputs,
-                                       forces=core.forces, sensitivity=sensitivity))
+            si=False, start=None, end=None, steps=None, forces=None, sensitivity=None, request=None):
+        """The driven kinematic analysis, like `mechkin run`. Returns a Motion; a run
+        that stops early returns the rows computed with motion.complete False and
+        motion.stop saying why.
+
+        The arguments are a RunRequest's fields (or pass request=RunRequest(...)):
+        order 0..4 shown, tol in [1e-15, 1e-3], solver, formulation, bodies/outputs
+        (None: all), si, forces (None: when the file has inertia or loads; solved with
+        accelerations whatever the order shown, their rates with order >= 3),
+        sensitivity (parameter names: d(column)/d(parameter) columns). Out-of-range
+        values raise ValueError with the CLI's message. start, end, steps replace the
+        file's analysis span."""
+        if request is None:
+            norm = lambda sel: None if sel is None else ([sel] if isinstance(sel, str) else list(sel))
+            request = RunRequest(order=int(order), tol=float(tol), solver=solver, formulation=formulation,
+                                 bodies=norm(bodies), outputs=norm(outputs), si=bool(si), forces=forces,
+                                 sensitivity=norm(sensitivity) or [])
+        core = self._core.run(request, start, end, steps)
+        return Motion(self, core, dict(order=request.order, si=request.si, bodies=request.bodies,
+                                       outputs=request.outputs, forces=core.forces,
+                                       sensitivity=list(request.sensitivity)))
 
     def __reduce__(self):
         return (_compile, (self._core.text, self._core.source, dict(self._core.overrides)))
@@ -227,8 +220,11 @@ class Model:
 
 
 class RunStop:
-    """Why a run ended early: kind is one of 'refused', 'assembly_failed',
-    'singular_position', 'solve_failed' ('none' for a complete run)."""
+    """Why a run ended early. Fields: kind ('refused', 'assembly_failed',
+    'singular_position', 'solve_failed', 'interrupted'; 'none' for a complete run),
+    message (the CLI's explanation), singular (dict(t, driver_values, joint_mobility,
+    involved) or None), limit (where a position solve failed: dict(t, driver_values
+    in SI, fold) or None). False for a complete run."""
 
     def __init__(self, report):
         self.kind = report["stop"]
@@ -272,8 +268,16 @@ class _Series:
 class Motion:
     """The result of a run: a table of rows (time steps) × typed columns.
 
-    values is a read-only rows × columns numpy view of the C++ buffer; t,
-    motion[name], body(...) and diagnostics are views into it (no copies)."""
+    Fields: model, values (read-only rows × columns numpy view of the C++ buffer),
+    columns ([{name, unit, quantity, subject, component, order}]: what each column
+    is), names (the column names, as in the CLI's table without units), t (time, s),
+    complete, stop (RunStop), set_aside, reselections, indeterminate_reactions,
+    diagnostics. Units: the file's (run(si=True): SI), stated per column by
+    units() and not repeated in the names.
+
+    Access: motion[name], body(name).position(order), effort(driver),
+    power(driver), reaction(joint), sensitivity(column, parameter) — views into
+    values (no copies); to_pandas(), to_csv(path), to_json(path). Motions pickle."""
 
     def __init__(self, model, core, options):
         self.model = model
@@ -284,13 +288,13 @@ class Motion:
         self._report = core.report()
         self.values = core.values
 
-    complete = property(lambda self: self._report["complete"])
-    stop = property(lambda self: RunStop(self._report))
+    complete = property(lambda self: self._report["complete"], doc="the run reached its last row")
+    stop = property(lambda self: RunStop(self._report), doc="RunStop: why the run ended early (falsy when complete)")
     set_aside = property(lambda self: list(self._report["set_aside"]), doc="redundant equations set aside")
     reselections = property(lambda self: list(self._report.get("reselections", [])),
                             doc="[(t, equations set aside from t on)]: redundancy that follows the motion")
-    names = property(lambda self: [c["name"] for c in self.columns])
-    t = property(lambda self: self.values[:, 0])
+    names = property(lambda self: [c["name"] for c in self.columns], doc="column names (units in units())")
+    t = property(lambda self: self.values[:, 0], doc="time of each row, s")
 
     def __len__(self):
         return self.values.shape[0]
@@ -322,6 +326,7 @@ class Motion:
                            writeable=False)
 
     def body(self, name):
+        """Typed access to one body's columns: .position(order), .angular_velocity(order), .euler_parameters()."""
         if name not in self.model.bodies:
             raise KeyError("no body %r" % name)
         return _Series(self, name)
@@ -339,6 +344,7 @@ class Motion:
         }
 
     def units(self):
+        """{column name: unit} ('' for dimensionless columns)."""
         return {c["name"]: c["unit"] for c in self.columns}
 
     def sensitivity(self, column, parameter):
@@ -355,6 +361,7 @@ class Motion:
         return self[driver + ".effort" + ("_t" if order else "")]
 
     def power(self, driver, order=0):
+        """The power the driver delivers; order 1: its rate."""
         return self[driver + ".power" + ("_t" if order else "")]
 
     def reaction(self, joint, frame="global", order=0):
@@ -385,6 +392,7 @@ class Motion:
         self._core.write(str(path), "csv")
 
     def to_json(self, path):
+        """Writes the same JSON as `mechkin run --format json -o path` (atomically)."""
         self._core.write(str(path), "json")
 
     def __reduce__(self):
@@ -405,27 +413,57 @@ def _rebuild_motion(model, options, values, report):
 
 
 def _run_variant(model, values, order, tol):
-    summary = model._core.run_variant({k: float(v) for k, v in values.items()}, int(order), float(tol))
-    summary["min"] = dict(summary["min"])
-    summary["max"] = dict(summary["max"])
-    return summary
+    return model._core.run_variant({k: float(v) for k, v in values.items()}, int(order), float(tol))
+
+
+def _sweep_frame(model, variants, summaries, order):
+    """One row per variant: its parameters, status, message, rows, t_stop, max_condition,
+    t_max_condition, then "<column> min" and "<column> max" per summarised column."""
+    import pandas as pd
+    names, units = model._core.sweep_columns(int(order))
+    parameters = []
+    for v in variants:
+        parameters += [k for k in v if k not in parameters]
+    frame = {k: [v.get(k, _np.nan) for v in variants] for k in parameters}
+    for key in ("status", "message", "rows", "t_stop", "max_condition", "t_max_condition"):
+        frame[key] = [s[key] for s in summaries]
+    column_units = {"t_stop": "s", "t_max_condition": "s"}
+    for k, (name, unit) in enumerate(zip(names, units)):
+        for side in ("min", "max"):
+            label = "%s %s" % (name, side)
+            frame[label] = [s[side][k] if k < len(s[side]) else _np.nan for s in summaries]
+            column_units[label] = unit
+    df = pd.DataFrame(frame)
+    df.attrs["units"] = column_units
+    return df
 
 
 def sweep(model, variants, client=None, order=1, tol=1e-10, threads=None):
-    """Runs every variant (a dict of parameter values) of `model` and returns one
-    summary dict per variant, in order: parameters, status ('complete', 'invalid',
-    'assembly', 'refused', 'limit', 'singular', 'failed'), message, rows, t_stop,
-    max_condition, and the min/max of each output column over the motion.
+    """Runs every variant (a dict of parameter values, file units) of `model` and
+    returns a pandas DataFrame with one row per variant, in order.
 
-    client: a dask.distributed Client — the variants are mapped over its workers
-    (the model pickles as its file text and parameter values). Without one, local
-    threads run them (the C++ core releases the GIL)."""
+    Columns: the varied parameters; status ('complete', 'invalid', 'assembly',
+    'refused', 'limit', 'singular', 'failed'); message (first line of why it is
+    not complete, '' when it is); rows (rows run); t_stop (time of the last row of
+    a run that stopped early, s; NaN when complete); max_condition and
+    t_max_condition (s); then "<column> min" and "<column> max" over the motion for
+    every output column (the bodies' without outputs) up to `order`, the column
+    named as in a Motion of that order. Units are stated once, in
+    df.attrs["units"] (the Motion's units of the column: the file's).
+
+    order and tol are a RunRequest's (ValueError with the CLI's message when out of
+    range). client: a dask.distributed Client — the variants are mapped over its
+    workers (the model pickles as its file text and parameter values). Without one,
+    local threads run them (the C++ core releases the GIL)."""
+    RunRequest(order=int(order), tol=float(tol)).validate()
     variants = [dict(v) for v in variants]
     if client is not None:
         shared = client.scatter(model, broadcast=True)
         futures = client.map(_run_variant, [shared] * len(variants), variants, order=order, tol=tol, pure=False)
-        return client.gather(futures)
-    import concurrent.futures
-    import os
-    with concurrent.futures.ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
-        return list(pool.map(lambda v: _run_variant(model, v, order, tol), variants))
+        summaries = client.gather(futures)
+    else:
+        import concurrent.futures
+        import os
+        with concurrent.futures.ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
+            summaries = list(pool.map(lambda v: _run_variant(model, v, order, tol), variants))
+    return _sweep_frame(model, variants, summaries, order)

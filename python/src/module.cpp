@@ -11,18 +11,23 @@
 #include <sstream>
 
 #include "analysis/check_report.hpp"
+#include "analysis/enum_names.hpp"
 #include "analysis/motion.hpp"
 #include "analysis/range.hpp"
+#include "analysis/run_request.hpp"
+#include "analysis/sweep.hpp"
 #include "analysis/tolerance.hpp"
 #include "io/check_report_writer.hpp"
 #include "io/range_report_writer.hpp"
-#include "io/tolerance_report_writer.hpp"
 #include "io/table_writer.hpp"
-#include "analysis/sweep.hpp"
+#include "io/tolerance_report_writer.hpp"
 #include "model/loader.hpp"
+#include "check_report_binding.hpp"
+#include "request_binding.hpp"
 
 namespace py = pybind11;
 using namespace mechkin;
+using namespace mechkin_python;
 
 namespace {
 
@@ -36,7 +41,7 @@ struct LoadedModel {
 
 py::list DiagnosticList(const std::vector<Diagnostic>& ds) {
   py::list out;
-  for (const auto& d : ds) out.append(py::make_tuple(d.pointer, d.message, d.fix));
+  for (const auto& d : ds) out.append(py::cast(d));
   return out;
 }
 
@@ -57,59 +62,41 @@ py::tuple Compile(const std::string& text, const std::string& source, const Para
   return py::make_tuple(m, py::list(), DiagnosticList(r.warnings));
 }
 
-py::object JsonToPython(const nlohmann::json& j) {
-  switch (j.type()) {
-    case nlohmann::json::value_t::null: return py::none();
-    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
-    case nlohmann::json::value_t::number_integer:
-    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<long long>());
-    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
-    case nlohmann::json::value_t::string: return py::str(j.get<std::string>());
-    case nlohmann::json::value_t::array: {
-      py::list l;
-      for (const auto& e : j) l.append(JsonToPython(e));
-      return std::move(l);
-    }
-    case nlohmann::json::value_t::object: {
-      py::dict d;
-      for (const auto& [k, v] : j.items()) d[py::str(k)] = JsonToPython(v);
-      return std::move(d);
-    }
-    default: return py::none();
-  }
-}
-
-py::dict CheckModel(const LoadedModel& m) {
+PyCheckReport CheckModel(const LoadedModel& m) {
   LoadResult loaded;
   loaded.model = *m.model;
   loaded.warnings = m.warnings;
-  nlohmann::json j;
-  {
-    py::gil_scoped_release release;
-    j = CheckReportJson(CheckLoaded(m.source, loaded));
-  }
-  return JsonToPython(j);
+  py::gil_scoped_release release;
+  return PyCheckReport{CheckLoaded(m.source, loaded)};
 }
 
-// Argument checks of the Python front end: the CLI's ranges, as ValueError.
+// Argument checks of the Python front end that are not a run request's: as ValueError.
 void Require(bool ok, const std::string& what) {
   if (!ok) throw py::value_error(what);
 }
 
-// (report dict, text): a report's JSON form and the CLI's text form of it.
+// (JSON text, text): a report's JSON form (the CLI's --format json) and its text form.
 template <typename Report>
-py::tuple ReportAndText(const Report& report, nlohmann::json (*to_json)(const Report&),
+py::tuple ReportAndText(const Report& report, std::string (*to_json)(const Report&),
                         void (*print)(const Report&, std::ostream&)) {
   std::ostringstream text;
   print(report, text);
-  return py::make_tuple(JsonToPython(to_json(report)), text.str());
+  return py::make_tuple(to_json(report), text.str());
+}
+
+// The request's ranges for the fields a command takes (ValueError with IsValid's message).
+void ValidateOrderAndTolerance(int order, double tol) {
+  RunRequest r;
+  r.order = order;
+  r.tolerance = tol;
+  ValidateRequest(r);
 }
 
 // `mechkin range`: (report dict, text).
 py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int steps, double span, double tol) {
   Require(steps >= 4 && steps <= 10000000, "steps must be between 4 and 10000000");
   Require(span >= 0 && std::isfinite(span), "span must be a positive length in file units (0: 4 x the mechanism's size)");
-  Require(tol >= 1e-15 && tol <= 1e-3, "tol must be between 1e-15 and 1e-3");
+  ValidateOrderAndTolerance(0, tol);
   RangeOptions options;
   options.driver = driver;
   options.steps = steps;
@@ -120,16 +107,15 @@ py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int step
     py::gil_scoped_release release;
     report = CalcRange(*m.model, options);
   }
-  return ReportAndText(report, &RangeReportJson, &PrintRangeReport);
+  return ReportAndText(report, &RangeReportJsonText, &PrintRangeReport);
 }
 
 // `mechkin tolerance`: (report dict, text).
 py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, unsigned long seed, int threads,
                            double tol) {
-  Require(order >= 0 && order <= 4, "order must be between 0 and 4");
+  ValidateOrderAndTolerance(order, tol);
   Require(monte_carlo >= 0 && monte_carlo <= 100000000, "monte_carlo must be between 0 and 100000000");
   Require(threads >= 0 && threads <= 4096, "threads must be between 0 (all cores) and 4096");
-  Require(tol >= 1e-15 && tol <= 1e-3, "tol must be between 1e-15 and 1e-3");
   ToleranceOptions options;
   options.order = order;
   options.monte_carlo = monte_carlo;
@@ -142,59 +128,7 @@ py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, uns
     py::gil_scoped_release release;
     report = AnalyzeTolerances(*m.model, options);
   }
-  return ReportAndText(report, &ToleranceReportJson, &PrintToleranceReport);
-}
-
-const char* QuantityName(Quantity q) {
-  switch (q) {
-    case Quantity::Time: return "time";
-    case Quantity::BodyPosition: return "body_position";
-    case Quantity::EulerParameter: return "euler_parameter";
-    case Quantity::AngularVelocity: return "angular_velocity";
-    case Quantity::PointPosition: return "point";
-    case Quantity::Distance: return "distance";
-    case Quantity::JointAngle: return "joint_angle";
-    case Quantity::Angle: return "angle";
-    case Quantity::VelocityRatio: return "velocity_ratio";
-    case Quantity::OrientationAngle: return "orientation_angle";
-    case Quantity::OrientationParameter: return "orientation_parameter";
-    case Quantity::RotationVector: return "rotation_vector";
-    case Quantity::GimbalLock: return "gimbal_lock";
-    case Quantity::JointSlide: return "joint_slide";
-    case Quantity::DriverEffort: return "driver_effort";
-    case Quantity::DriverPower: return "driver_power";
-    case Quantity::JointForce: return "joint_force";
-    case Quantity::JointMoment: return "joint_moment";
-    case Quantity::JointForceLocal: return "joint_force_local";
-    case Quantity::JointMomentLocal: return "joint_moment_local";
-    case Quantity::KineticEnergy: return "kinetic_energy";
-    case Quantity::PotentialEnergy: return "potential_energy";
-    case Quantity::EnergyBalance: return "energy_balance";
-    case Quantity::NewtonIterations: return "newton_iterations";
-    case Quantity::Residual: return "residual";
-    case Quantity::Condition: return "condition";
-    case Quantity::ErrorBound: return "error_bound";
-  }
-  return "";
-}
-
-const char* StopName(StopKind k) {
-  switch (k) {
-    case StopKind::None: return "none";
-    case StopKind::Refused: return "refused";
-    case StopKind::AssemblyFailed: return "assembly_failed";
-    case StopKind::SingularPosition: return "singular_position";
-    case StopKind::SolveFailed: return "solve_failed";
-    case StopKind::Interrupted: return "interrupted";
-  }
-  return "";
-}
-
-StopKind StopFromName(const std::string& s) {
-  for (StopKind k : {StopKind::None, StopKind::Refused, StopKind::AssemblyFailed, StopKind::SingularPosition,
-                     StopKind::SolveFailed, StopKind::Interrupted})
-    if (s == StopName(k)) return k;
-  return StopKind::SolveFailed;
+  return ReportAndText(report, &ToleranceReportJsonText, &PrintToleranceReport);
 }
 
 // A Motion with the model it was computed from (the layout refers to it).
@@ -216,47 +150,40 @@ TableOptions MakeTableOptions(int order, bool si, const std::optional<std::vecto
   return t;
 }
 
-std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, int order, double tol, const std::string& solver,
-                                   const std::string& formulation, const std::optional<std::vector<std::string>>& bodies,
-                                   const std::optional<std::vector<std::string>>& outputs, bool si,
-                                   std::optional<double> start, std::optional<double> end, std::optional<int> steps,
-                                   std::optional<bool> forces, const std::vector<std::string>& sensitivity) {
-  auto model = m.model;
-  if (start || end || steps) {
-    auto copy = std::make_shared<Model>(*m.model);
-    if (!copy->analysis) copy->analysis = Analysis{};
-    if (start) copy->analysis->start = *start;
-    if (end) copy->analysis->end = *end;
-    if (steps) copy->analysis->steps = *steps;
-    if (!(copy->analysis->end > copy->analysis->start) || copy->analysis->steps < 1)
-      throw py::value_error("need end > start and steps >= 1");
-    model = copy;
-  }
-  if (solver != "newton" && solver != "ceres") throw py::value_error("solver must be 'newton' or 'ceres'");
-  if (formulation != "omega" && formulation != "p") throw py::value_error("formulation must be 'omega' or 'p'");
-  AnalysisOptions o;
-  o.order = order;
-  o.tolerance = tol;
-  o.solver = solver == "ceres" ? PositionSolver::Ceres : PositionSolver::Newton;
-  o.formulation = formulation == "p" ? Formulation::P : Formulation::Omega;
-  o.keep_step_diagnostics = false;  // the table's diagnostic columns carry them
-  std::string why;
-  if (!o.IsValid(&why)) throw py::value_error(why);
-  TableOptions table = MakeTableOptions(order, si, bodies, outputs, forces.value_or(model->HasForces()));
-  for (const auto& p : sensitivity)
+// The model with the analysis span replaced where start/end/steps are given.
+std::shared_ptr<const Model> WithSpan(const std::shared_ptr<const Model>& model, std::optional<double> start,
+                                      std::optional<double> end, std::optional<int> steps) {
+  if (!start && !end && !steps) return model;
+  auto copy = std::make_shared<Model>(*model);
+  if (!copy->analysis) copy->analysis = Analysis{};
+  if (start) copy->analysis->start = *start;
+  if (end) copy->analysis->end = *end;
+  if (steps) copy->analysis->steps = *steps;
+  if (!(copy->analysis->end > copy->analysis->start) || copy->analysis->steps < 1)
+    throw py::value_error("need end > start and steps >= 1");
+  return copy;
+}
+
+// `mechkin run` from Python: the request validated and planned (ValueError with the
+// CLI's message) before the GIL is released for the run.
+std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, RunRequest request, std::optional<double> start,
+                                   std::optional<double> end, std::optional<int> steps) {
+  auto model = WithSpan(m.model, start, end, steps);
+  ValidateRequest(request);
+  for (const auto& p : request.sensitivity)
     if (!model->FindParameter(p)) throw py::value_error("sensitivity: no parameter '" + p + "' in the model");
-  table.sensitivity = sensitivity;
-  if (table.forces && order < 2) throw py::value_error("forces need order >= 2 (order 3 gives their rates too)");
-  auto out = std::make_shared<PyMotion>();
-  out->model = model;
+  request.keep_step_diagnostics = false;  // the table's diagnostic columns carry them
+  RunPlan plan;
   try {
-    MotionLayout probe(*model, table);  // selection errors as ValueError, before releasing the GIL
+    plan = PlanRun(*model, request);  // selection errors as ValueError, before releasing the GIL
   } catch (const std::invalid_argument& e) {
     throw py::value_error(e.what());
   }
+  auto out = std::make_shared<PyMotion>();
+  out->model = model;
   {
     py::gil_scoped_release release;
-    out->motion = std::make_unique<Motion>(RunMotion(*model, o, table));
+    out->motion = std::make_unique<Motion>(RunPlanned(*model, plan));
   }
   return out;
 }
@@ -275,7 +202,8 @@ std::shared_ptr<PyMotion> MotionFromState(const LoadedModel& m, int order, bool 
   if (values.ndim() != 2 || values.shape(1) != out->motion->cols()) throw py::value_error("values do not fit the layout");
   out->motion->mutable_values().assign(values.data(), values.data() + values.size());
   out->motion->complete = complete;
-  out->motion->stop.kind = StopFromName(stop);
+  out->motion->stop.kind = StopKind::SolveFailed;
+  Parse(stop, &out->motion->stop.kind);
   out->motion->stop.message = message;
   return out;
 }
@@ -286,7 +214,7 @@ py::list Columns(const PyMotion& pm) {
     py::dict d;
     d["name"] = c.name;
     d["unit"] = c.unit;
-    d["quantity"] = QuantityName(c.quantity);
+    d["quantity"] = ToString(c.quantity);
     d["subject"] = c.subject;
     d["component"] = c.component;
     d["order"] = c.order;
@@ -299,7 +227,7 @@ py::dict Report(const PyMotion& pm) {
   const Motion& m = *pm.motion;
   py::dict d;
   d["complete"] = m.complete;
-  d["stop"] = StopName(m.stop.kind);
+  d["stop"] = ToString(m.stop.kind);
   d["message"] = m.stop.message;
   if (m.stop.singular) {
     py::dict s;
@@ -343,33 +271,30 @@ py::array Values(py::object self) {
 }
 
 void ToTable(const PyMotion& pm, const std::string& path, const std::string& format) {
+  const TableFormat table_format = NamedOrThrow<TableFormat>("format", format);
   std::string why;
   bool ok;
   {
     py::gil_scoped_release release;
-    ok = WriteMotion(*pm.motion, format == "json" ? TableFormat::Json : TableFormat::Csv, path, &why);
+    ok = WriteMotion(*pm.motion, table_format, path, &why);
   }
   if (!ok) throw std::runtime_error(why);
 }
 
-// One sweep variant's summary (analysis/sweep.hpp), the GIL released while it runs.
+// One sweep variant's summary (analysis/sweep.hpp), the GIL released while it runs;
+// min/max per column of sweep_columns(order), in that order.
 py::dict RunVariantSummary(const LoadedModel& lm, const ParameterOverrides& values, int order, double tol) {
+  ValidateOrderAndTolerance(order, tol);
   SweepOptions options;
   options.order = order;
   options.analysis.tolerance = tol;
   VariantSummary v;
-  std::vector<std::string> columns;
   {
     py::gil_scoped_release release;
     v = RunVariant(*lm.model, values, options);
-    columns = SweepColumns(*lm.model, order);
   }
-  py::dict d, mins, maxs, params;
+  py::dict d, params;
   for (const auto& kv : values) params[py::str(kv.first)] = kv.second;
-  for (size_t k = 0; k < columns.size() && k < v.min.size(); ++k) {
-    mins[py::str(columns[k])] = v.min[k];
-    maxs[py::str(columns[k])] = v.max[k];
-  }
   d["parameters"] = params;
   d["status"] = v.status;
   d["message"] = v.message;
@@ -377,9 +302,21 @@ py::dict RunVariantSummary(const LoadedModel& lm, const ParameterOverrides& valu
   d["t_stop"] = v.t_stop;
   d["max_condition"] = v.max_condition;
   d["t_max_condition"] = v.t_max_condition;
-  d["min"] = mins;
-  d["max"] = maxs;
+  d["min"] = v.min;
+  d["max"] = v.max;
   return d;
+}
+
+// The summarised columns of a sweep: (names, units), the names as in a Motion of
+// the same order (units separate, as Motion.units()).
+py::tuple SweepColumnsOf(const LoadedModel& lm, int order) {
+  ValidateOrderAndTolerance(order, 1e-10);
+  std::vector<std::string> names, units;
+  for (const ColumnDescriptor& c : SweepColumnDescriptors(*lm.model, order)) {
+    names.push_back(c.name);
+    units.push_back(c.unit);
+  }
+  return py::make_tuple(names, units);
 }
 
 py::dict ModelInfo(const LoadedModel& lm) {
@@ -423,20 +360,21 @@ py::dict ModelInfo(const LoadedModel& lm) {
 
 PYBIND11_MODULE(_mechkin, mod) {
   mod.doc() = "mechkin core (C++); use the `mechkin` package";
-  py::class_<LoadedModel, std::shared_ptr<LoadedModel>>(mod, "CoreModel")
+  BindRunRequest(mod);
+  BindCheckReport(mod);
+  py::class_<LoadedModel, std::shared_ptr<LoadedModel>>(mod, "CoreModel", "A compiled model (mechkin.Model wraps it)")
       .def_readonly("text", &LoadedModel::text)
       .def_readonly("source", &LoadedModel::source)
       .def("info", &ModelInfo)
       .def("check", &CheckModel)
-      .def("run", &RunModel, py::arg("order"), py::arg("tol"), py::arg("solver"), py::arg("formulation"),
-           py::arg("bodies"), py::arg("outputs"), py::arg("si"), py::arg("start"), py::arg("end"), py::arg("steps"),
-           py::arg("forces"), py::arg("sensitivity") = std::vector<std::string>{})
+      .def("run", &RunModel, py::arg("request"), py::arg("start"), py::arg("end"), py::arg("steps"))
       .def_readonly("overrides", &LoadedModel::overrides)
       .def("run_variant", &RunVariantSummary, py::arg("values"), py::arg("order"), py::arg("tol"))
+      .def("sweep_columns", &SweepColumnsOf, py::arg("order"))
       .def("range", &RangeOfModel, py::arg("driver"), py::arg("steps"), py::arg("span"), py::arg("tol"))
       .def("tolerance", &ToleranceOfModel, py::arg("order"), py::arg("monte_carlo"), py::arg("seed"),
            py::arg("threads"), py::arg("tol"));
-  py::class_<PyMotion, std::shared_ptr<PyMotion>>(mod, "CoreMotion")
+  py::class_<PyMotion, std::shared_ptr<PyMotion>>(mod, "CoreMotion", "A computed motion (mechkin.Motion wraps it)")
       .def_property_readonly("values", &Values)
       .def("columns", &Columns)
       .def("report", &Report)

@@ -54,21 +54,21 @@ def test_local_sweep_reports_every_kind_of_variant():
     m = mechkin.load(FOUR_BAR)
     out = mechkin.sweep(m, _variants(), threads=2)
     assert len(out) == 9
-    statuses = {r["status"] for r in out}
+    statuses = set(out["status"])
     assert "complete" in statuses and "invalid" in statuses
-    nominal_like = out[3 * 0 + 1]  # a = 30, b = 120: a Grashof crank-rocker
+    nominal_like = out.iloc[3 * 0 + 1]  # a = 30, b = 120: a Grashof crank-rocker
     assert nominal_like["status"] == "complete" and nominal_like["rows"] == 73
-    invalid = [r for r in out if r["status"] == "invalid"][0]
+    invalid = out[out["status"] == "invalid"].iloc[0]
     assert "acos" in invalid["message"]
 
 
 def test_sweep_on_a_dask_local_cluster_matches_local_threads():
     distributed = pytest.importorskip("distributed")
+    import pandas
     m = mechkin.load(FOUR_BAR)
     local = mechkin.sweep(m, _variants(), threads=2)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         with distributed.Client(cluster) as client:
             remote = mechkin.sweep(m, _variants(), client=client)
-    assert len(remote) == len(local)
-    for a, b in zip(local, remote):
-        assert _same(a, b), (a, b)
+    pandas.testing.assert_frame_equal(local, remote)
+    assert local.attrs == remote.attrs

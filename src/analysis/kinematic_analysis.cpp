@@ -8,17 +8,24 @@
 #include "analysis/assembly.hpp"
 #include "analysis/error_bounds.hpp"
 #include "analysis/row_selection.hpp"
+#include "analysis/run_request.hpp"
 
 namespace mechkin {
 
+// The fields a request has are checked by RunRequest::IsValid (one range, one message);
+// what is left is the solver's own precondition, which PlanRun always meets.
 bool AnalysisOptions::IsValid(std::string* error) const {
-  if (order < 0 || order > 4) { *error = "order must be 0..4"; return false; }
-  if (!(tolerance > 0 && tolerance < 1e-2)) { *error = "tolerance must be in (0, 1e-2)"; return false; }
-  if (max_iterations < 1) { *error = "max_iterations must be >= 1"; return false; }
-  if (predictor_order < 0 || predictor_order > 3) { *error = "predictor order must be 0..3"; return false; }
-  if (forces && order < 2) { *error = "forces need accelerations: use order 2 or more (--order 3 gives their rates too)"; return false; }
-  if (!sensitivity_parameters.empty() && (formulation != Formulation::Omega || solver != PositionSolver::Newton)) {
-    *error = "sensitivities use the default formulation and solver (omega, newton)";
+  RunRequest r;
+  r.order = order;
+  r.tolerance = tolerance;
+  r.max_iterations = max_iterations;
+  r.predictor_order = predictor_order;
+  r.formulation = formulation;
+  r.solver = solver;
+  r.sensitivity = sensitivity_parameters;
+  if (!r.IsValid(error)) return false;
+  if (forces && order < SolvedOrder(0, true)) {
+    *error = "forces need accelerations: the solved order must be 2 or more (PlanRun raises it)";
     return false;
   }
   return true;

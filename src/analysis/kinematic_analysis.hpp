@@ -15,6 +15,9 @@
 
 namespace mechkin {
 
+// The solver's settings of one run. Front ends do not fill these: they build a
+// RunRequest (analysis/run_request.hpp) whose PlanRun decides them, the solved
+// order included (raised for forces).
 struct AnalysisOptions {
   int order = 3;                       // highest derivative computed (0..4)
   Formulation formulation = Formulation::Omega;
@@ -32,7 +35,7 @@ struct AnalysisOptions {
   // Keep every row's StepDiagnostics in the report (the CLI streams and keeps none).
   bool keep_step_diagnostics = true;
   // Inverse dynamics along the motion (driver efforts, joint reactions, energy):
-  // needs order ≥ 2; rates with order ≥ 3.
+  // needs order ≥ 2 (PlanRun raises it); rates with order ≥ 3.
   bool forces = false;
   // Parameters whose sensitivities each row carries (analysis/sensitivity.hpp).
   std::vector<std::string> sensitivity_parameters;

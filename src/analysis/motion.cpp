@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "analysis/orientation.hpp"
+#include "analysis/run_request.hpp"
 #include "constraints/constraint.hpp"
 
 namespace mechkin {
@@ -698,21 +699,11 @@ AnalysisReport RunIntoSink(const Model& model, const AnalysisOptions& options, c
   });
 }
 
+// The table decides what the solver computes, through the run request's policy.
 Motion RunMotion(const Model& model, const AnalysisOptions& options, const TableOptions& table) {
-  Motion motion{MotionLayout(model, table)};
-  AnalysisOptions o = options;
-  o.order = table.order;
-  o.forces = table.forces;
-  o.sensitivity_parameters = table.sensitivity;
-  if (!table.all_bodies || !table.all_outputs) {
-    o.needed_bodies = motion.layout().NeededBodies(model);
-    if (o.needed_bodies.empty()) o.needed_bodies.push_back(-1);  // nothing requested: solve no block
-  }
-  if (model.analysis) motion.mutable_values().reserve(static_cast<size_t>(model.analysis->steps + 1) * motion.cols());
-  motion.report = RunIntoSink(model, o, motion.layout(), &motion);
-  motion.complete = motion.report.complete;
-  motion.stop = StopOf(motion.report);
-  return motion;
+  RunPlan plan{table, options};
+  DecideComputation(model, &plan);
+  return RunPlanned(model, plan);
 }
 
 }  // namespace mechkin

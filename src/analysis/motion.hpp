@@ -223,7 +223,9 @@ class MotionRecorder {
 AnalysisReport RunIntoSink(const Model& model, const AnalysisOptions& options, const MotionLayout& layout,
                            RowSink* sink);
 /// Runs the analysis and returns the whole Motion (never throws for a mechanism that
-/// cannot move as asked; the Motion says why it stopped).
+/// cannot move as asked; the Motion says why it stopped). The table decides the solved
+/// order, forces, sensitivities and blocks (DecideComputation, analysis/run_request.hpp);
+/// `options` gives the solver's settings. Front ends use RunMotion(model, RunRequest).
 Motion RunMotion(const Model& model, const AnalysisOptions& options, const TableOptions& table);
 /// The stop classification of a report.
 MotionStop StopOf(const AnalysisReport& report);

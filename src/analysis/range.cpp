@@ -22,7 +22,10 @@ RangeEnd Sweep(const Model& model, int d, double sign, double span, const RangeO
   Model m = model;
   for (size_t k = 0; k < m.drivers.size(); ++k)
     m.drivers[k].function = Linear(DesignDriverValue(model, model.drivers[k]), k == static_cast<size_t>(d) ? sign * span : 0);
-  m.analysis = Analysis{0, 1, options.steps};
+  m.analysis = Analysis{};
+  m.analysis->start = 0;
+  m.analysis->end = 1;
+  m.analysis->steps = options.steps;
   AnalysisOptions a;
   a.order = 1;
   a.tolerance = options.tolerance;

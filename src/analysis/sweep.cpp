@@ -111,10 +111,16 @@ void Summarize(const Motion& m, VariantSummary* v) {
 
 }  // namespace
 
-std::vector<std::string> SweepColumns(const Model& model, int order) {
+std::vector<ColumnDescriptor> SweepColumnDescriptors(const Model& model, int order) {
   const MotionLayout layout(model, SweepTable(model, order));
+  std::vector<ColumnDescriptor> columns;
+  for (int c : SummaryColumns(layout)) columns.push_back(layout.columns()[c]);
+  return columns;
+}
+
+std::vector<std::string> SweepColumns(const Model& model, int order) {
   std::vector<std::string> names;
-  for (int c : SummaryColumns(layout)) names.push_back(layout.columns()[c].Header());
+  for (const ColumnDescriptor& c : SweepColumnDescriptors(model, order)) names.push_back(c.Header());
   return names;
 }
 

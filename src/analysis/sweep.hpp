@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "analysis/kinematic_analysis.hpp"
+#include "analysis/motion.hpp"
 #include "model/loader.hpp"
 
 namespace mechkin {
@@ -66,5 +67,7 @@ SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& 
 VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, const SweepOptions& options);
 /// The column headers a sweep of `model` summarises.
 std::vector<std::string> SweepColumns(const Model& model, int order);
+/// Those columns' descriptors (name and unit apart, as a Motion of the same order has them).
+std::vector<ColumnDescriptor> SweepColumnDescriptors(const Model& model, int order);
 
 }  // namespace mechkin

@@ -221,6 +221,14 @@ json CheckReportsJson(const std::vector<CheckReport>& reports) {
   return doc;
 }
 
+std::string CheckReportJsonText(const CheckReport& report) {
+  return CheckReportJson(report).dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+std::string CheckReportsJsonText(const std::vector<CheckReport>& reports) {
+  return CheckReportsJson(reports).dump(2, ' ', false, json::error_handler_t::replace);
+}
+
 void PrintCheckReport(const CheckReport& r, std::ostream& out) {
   out << r.file << ": ";
   if (!r.valid) PrintErrors(r, out);

@@ -13,6 +13,10 @@ namespace mechkin {
 nlohmann::json CheckReportJson(const CheckReport& report);
 /// The whole `--format json` document for several files.
 nlohmann::json CheckReportsJson(const std::vector<CheckReport>& reports);
+/// The JSON texts as `check --format json` writes them (invalid UTF-8 replaced), so the
+/// CLI and the Python binding never handle JSON themselves.
+std::string CheckReportJsonText(const CheckReport& report);
+std::string CheckReportsJsonText(const std::vector<CheckReport>& reports);
 /// The human-readable report of one file.
 void PrintCheckReport(const CheckReport& report, std::ostream& out);
 

@@ -51,4 +51,6 @@ void PrintRangeReport(const RangeReport& r, std::ostream& out) {
   }
 }
 
+std::string RangeReportJsonText(const RangeReport& x) { return RangeReportJson(x).dump(2); }
+
 }  // namespace mechkin

@@ -9,6 +9,8 @@
 namespace mechkin {
 
 nlohmann::json RangeReportJson(const RangeReport& report);
+/// The JSON text `range --format json` writes (without the final newline).
+std::string RangeReportJsonText(const RangeReport& report);
 void PrintRangeReport(const RangeReport& report, std::ostream& out);
 
 }  // namespace mechkin

@@ -136,4 +136,6 @@ bool MergeSweepFiles(const std::vector<std::string>& files, SweepResult* merged,
   return true;
 }
 
+std::string SweepJsonText(const SweepResult& x) { return SweepJson(x).dump(1); }
+
 }  // namespace mechkin

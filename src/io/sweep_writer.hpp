@@ -12,6 +12,8 @@
 namespace mechkin {
 
 nlohmann::json SweepJson(const SweepResult& result);
+/// The JSON text `sweep --format json` writes (without the final newline).
+std::string SweepJsonText(const SweepResult& result);
 std::string SweepCsv(const SweepResult& result);
 /// Joins shard files written with --format json. On failure (unreadable file,
 /// shards of different sweeps, missing shards) returns false and says why,

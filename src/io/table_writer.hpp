@@ -10,12 +10,11 @@
 
 #include <string>
 
+#include "analysis/enum_names.hpp"  // TableFormat
 #include "analysis/motion.hpp"
 #include "io/output_file.hpp"
 
 namespace mechkin {
-
-enum class TableFormat { Csv, Json };
 
 class TableWriter : public RowSink {
  public:

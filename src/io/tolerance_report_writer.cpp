@@ -72,4 +72,6 @@ void PrintToleranceReport(const ToleranceReport& r, std::ostream& out) {
         << Num(c.t_mc_std) << " s (RSS/sqrt(3) " << Num(c.max_rss / std::sqrt(3.0)) << ")\n";
 }
 
+std::string ToleranceReportJsonText(const ToleranceReport& x) { return ToleranceReportJson(x).dump(2); }
+
 }  // namespace mechkin

@@ -9,6 +9,8 @@
 namespace mechkin {
 
 nlohmann::json ToleranceReportJson(const ToleranceReport& report);
+/// The JSON text `tolerance --format json` writes (without the final newline).
+std::string ToleranceReportJsonText(const ToleranceReport& report);
 void PrintToleranceReport(const ToleranceReport& report, std::ostream& out);
 
 }  // namespace mechkin

@@ -227,8 +227,15 @@ TEST(Solvers, CeresAndNewtonAgree) {
 // A crank turned 1000 times reads 2000π: angles are continuous, never wrapped.
 TEST(Angles, ThousandTurnsReadContinuously) {
   Model m = Load("planar-four-bar.json");
-  m.analysis = Analysis{0, 1000, 8000};
-  m.outputs.push_back({"crank_angle", OutputKind::JointCoordinate, kGround, 0, Vec3::Zero(), Vec3::Zero(), 0});
+  m.analysis = Analysis{};
+  m.analysis->end = 1000;
+  m.analysis->steps = 8000;
+  Output crank_angle;
+  crank_angle.name = "crank_angle";
+  crank_angle.kind = OutputKind::JointCoordinate;
+  crank_angle.body2 = 0;
+  crank_angle.joint = 0;
+  m.outputs.push_back(crank_angle);
   AnalysisOptions o;
   o.order = 1;
   const Table tab = RunTable(m, o);

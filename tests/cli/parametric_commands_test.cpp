@@ -19,7 +19,7 @@ const std::string kFourBar = std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/para
 TEST(ParametricCommands, SetChangesTheRunAndBadSettingsAreRefused) {
   RunOptions o;
   o.file = kSlider;
-  o.order = 0;
+  o.request.order = 0;
   o.outputs = {"piston"};
   o.outputs_given = o.bodies_given = true;
   o.set = {"crank=45", "offset=0"};
@@ -46,7 +46,7 @@ TEST(ParametricCommands, SetChangesTheRunAndBadSettingsAreRefused) {
 TEST(ParametricCommands, SensitivityColumnsAndUnknownParameter) {
   RunOptions o;
   o.file = kSlider;
-  o.order = 1;
+  o.request.order = 1;
   o.sensitivity = {"rod"};
   std::ostringstream out, err;
   ASSERT_EQ(RunRun(o, out, err), 0) << err.str();

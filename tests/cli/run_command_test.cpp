@@ -27,7 +27,7 @@ std::string WriteTemp(const std::string& name, const std::string& text) {
 TEST(RunCommand, ColumnsAreNamedAsInFormatV1) {
   RunOptions o;
   o.file = kSrc + "/mechanisms/spatial-slider-crank.json";
-  o.order = 3;
+  o.request.order = 3;
   std::ostringstream out, err;
   ASSERT_EQ(RunRun(o, out, err), 0) << err.str();
   const std::string header = out.str().substr(0, out.str().find('\n'));
@@ -43,7 +43,7 @@ TEST(RunCommand, ColumnsAreNamedAsInFormatV1) {
 TEST(RunCommand, OrderAndSelectionLimitTheColumns) {
   RunOptions o;
   o.file = kSrc + "/mechanisms/spatial-slider-crank.json";
-  o.order = 1;
+  o.request.order = 1;
   o.bodies_given = true;  // no body columns
   o.outputs = {"piston"};
   o.outputs_given = true;
@@ -133,14 +133,14 @@ TEST(RunCommand, InvalidFileExitsOneAndWritesNothing) {
 TEST(RunCommand, NotesWhereTheBoundExceedsTheTolerance) {
   RunOptions o;
   o.file = kSrc + "/tests/data/piston-driven-slider-crank.json";
-  o.order = 3;
+  o.request.order = 3;
   std::ostringstream out, err;
   ASSERT_EQ(RunRun(o, out, err), 0) << err.str();
   EXPECT_NE(err.str().find("note: the jerk error bound exceeds 10 x --tol 1e-10 from t = "), std::string::npos) << err.str();
   EXPECT_EQ(err.str().find("note: the position"), std::string::npos) << err.str();
   RunOptions plain;
   plain.file = kSrc + "/mechanisms/planar-four-bar.json";
-  plain.order = 3;
+  plain.request.order = 3;
   std::ostringstream out2, err2;
   ASSERT_EQ(RunRun(plain, out2, err2), 0);
   EXPECT_EQ(err2.str().find("note:"), std::string::npos) << err2.str();

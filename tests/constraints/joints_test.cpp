@@ -19,8 +19,13 @@ namespace {
 int KernelDimension(JointType type, std::mt19937& g) {
   std::uniform_real_distribution<double> u(-1, 1);
   Model m;
-  for (int b = 0; b < 2; ++b)
-    m.bodies.push_back({"b" + std::to_string(b), Vec3(u(g), u(g), u(g)), Vec4(u(g), u(g), u(g), u(g)).normalized()});
+  for (int b = 0; b < 2; ++b) {
+    Body body;
+    body.name = "b" + std::to_string(b);
+    body.position = Vec3(u(g), u(g), u(g));
+    body.euler = Vec4(u(g), u(g), u(g), u(g)).normalized();
+    m.bodies.push_back(body);
+  }
   Joint j;
   j.name = "j";
   j.type = type;

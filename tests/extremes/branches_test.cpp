@@ -78,12 +78,19 @@ TEST(Branches, CoarseStepsDoNotJumpBranch) {
   }
 }
 
+// Solver settings of one derivative order (named fields, not positional).
+AnalysisOptions OrderOptions(int order) {
+  AnalysisOptions o;
+  o.order = order;
+  return o;
+}
+
 // Grashof sum equal (40 + 100 = 80 + 60): at crank angle 0 all links are collinear,
 // a change point where the branches meet. Starting at 60°, the crank reaches it
 // after 300° of driver motion; the run stops there and says so.
 TEST(Branches, ChangePointOfAnEqualGrashofSum) {
   const nlohmann::json j = testing_files::PlanarFourBar(40, 100, 80, 60, 60, 90);
-  const RunOut out = RunRocker(j, AnalysisOptions{1});
+  const RunOut out = RunRocker(j, OrderOptions(1));
   ASSERT_FALSE(out.rep.complete);
   ASSERT_TRUE(out.rep.singular.has_value()) << out.rep.message;
   EXPECT_NEAR(out.rep.singular->driver_values[0], 300 * M_PI / 180, 1e-6);

@@ -19,12 +19,19 @@ using testing_files::FromJson;
 
 using Columns = std::map<std::string, std::vector<double>>;
 
+// Solver settings of one derivative order (named fields, not positional).
+AnalysisOptions OrderOptions(int order) {
+  AnalysisOptions o;
+  o.order = order;
+  return o;
+}
+
 Columns RunColumns(const Model& m, AnalysisReport* rep, int order = 3) {
   TableOptions topt;
   topt.order = order;
   topt.si = true;
   MotionRecorder table(m, topt);
-  *rep = RunKinematicAnalysis(m, AnalysisOptions{order}, [&](const SystemState& s, const StepDiagnostics& d) {
+  *rep = RunKinematicAnalysis(m, OrderOptions(order), [&](const SystemState& s, const StepDiagnostics& d) {
     return table.Record(s, d);
   });
   Columns c;
@@ -93,7 +100,7 @@ TEST(Extremes, TenThousandRevolutions) {
   MotionRecorder table(m, topt);
   double worst_norm = 0;
   std::vector<double> last;
-  const AnalysisReport rep = RunKinematicAnalysis(m, AnalysisOptions{1}, [&](const SystemState& s, const StepDiagnostics& d) {
+  const AnalysisReport rep = RunKinematicAnalysis(m, OrderOptions(1), [&](const SystemState& s, const StepDiagnostics& d) {
     for (const auto& b : s.bodies) worst_norm = std::max(worst_norm, std::abs(b.p.norm() - 1));
     return table.Record(s, d);
   });

@@ -13,6 +13,14 @@
 namespace mechkin {
 namespace {
 
+// A tight position solve (named fields, not positional).
+SolveOptions Tight(double tolerance) {
+  SolveOptions o;
+  o.tolerance = tolerance;
+  o.max_iterations = 50;
+  return o;
+}
+
 struct Solved {
   Model model;
   std::unique_ptr<ConstraintSystem> sys;
@@ -27,7 +35,7 @@ void Assemble(const std::string& file, double t, Solved* out) {
   out->s = std::make_unique<SystemState>(*out->sys);
   std::string why;
   int iters = 0;
-  ASSERT_TRUE(AssembleDesignPose(*out->sys, SolveOptions{1e-13, 50}, out->s.get(), &iters, &why)) << why;
+  ASSERT_TRUE(AssembleDesignPose(*out->sys, Tight(1e-13), out->s.get(), &iters, &why)) << why;
   out->rows = SelectRows(*out->sys, *out->s);
 }
 
@@ -37,7 +45,7 @@ TEST_P(WorkspaceTest, TransposeSolveMatchesDenseTranspose) {
   Solved m;
   Assemble(GetParam(), 0, &m);
   KinematicsWorkspace ws(*m.sys, m.rows.active, WorkspaceOptions{});
-  ASSERT_TRUE(SolvePosition(ws, SolveOptions{1e-13, 50}, m.s.get(), false).success);
+  ASSERT_TRUE(SolvePosition(ws, Tight(1e-13), m.s.get(), false).success);
   Eigen::MatrixXd J;
   CalcJacobianDense(*m.sys, *m.s, Formulation::Omega, &J);
   Eigen::MatrixXd Ja(m.rows.active.size(), J.cols());
@@ -57,18 +65,18 @@ TEST_P(WorkspaceTest, VelocityMatchesCentralDifferenceOfPositions) {
   const double t = 0.3 * m.model.analysis->end, h = 1e-5 * m.model.analysis->end;
   std::string why;
   int iters = 0;
-  ASSERT_TRUE(ContinueToStart(ws, t, SolveOptions{1e-13, 50}, m.s.get(), &iters, &why)) << why;
+  ASSERT_TRUE(ContinueToStart(ws, t, Tight(1e-13), m.s.get(), &iters, &why)) << why;
   SystemState at = *m.s;
   auto position_at = [&](double tt) {
     SystemState s = at;
     EvalDriverFunctions(m.model, tt, &s);
     AimRotationDrivers(*m.sys, &s);
-    EXPECT_TRUE(SolvePosition(ws, SolveOptions{1e-14, 50}, &s, false).success);
+    EXPECT_TRUE(SolvePosition(ws, Tight(1e-14), &s, false).success);
     return s;
   };
   const SystemState plus = position_at(t + h), minus = position_at(t - h);
   EvalDriverFunctions(m.model, t, &at);
-  ASSERT_TRUE(SolvePosition(ws, SolveOptions{1e-14, 50}, &at, false).success);
+  ASSERT_TRUE(SolvePosition(ws, Tight(1e-14), &at, false).success);
   SolveDerivatives(ws, 2, &at);
   for (size_t b = 0; b < at.bodies.size(); ++b) {
     const Vec3 fd = (plus.bodies[b].r[0] - minus.bodies[b].r[0]) / (2 * h);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "analysis/check_report.hpp"
+#include "analysis/enum_names.hpp"
 #include "cli/commands/load_for_command.hpp"
 #include "io/check_report_writer.hpp"
 
@@ -12,7 +13,7 @@ void SetupCheckCommand(CLI::App& app, CheckOptions* options) {
   CLI::App* cmd = app.add_subcommand("check", "Validate mechanism files; report degrees of freedom and expectations");
   cmd->add_option("files", options->files, "Mechanism files (format v1)")->required();
   cmd->add_option("--format", options->format, "Report format")
-      ->check(CLI::IsMember({"text", "json"}))
+      ->check(CLI::IsMember(NamesOf<ReportFormat>()))
       ->default_str("text");
   cmd->add_option("--set", options->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
   cmd->add_flag("--branches", options->branches,
@@ -41,7 +42,7 @@ int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) 
     reports.push_back(std::move(r));
   }
   const bool ok = std::all_of(reports.begin(), reports.end(), [](const CheckReport& r) { return r.ok(); });
-  if (options.format == "json") out << CheckReportsJson(reports).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  if (options.format == "json") out << CheckReportsJsonText(reports) << "\n";
   return ok ? 0 : 1;
 }
 

@@ -2,8 +2,10 @@
 
 #include <sstream>
 
+#include "analysis/enum_names.hpp"
 #include "analysis/range.hpp"
 #include "cli/commands/load_for_command.hpp"
+#include "cli/commands/request_options.hpp"
 #include "io/range_report_writer.hpp"
 
 namespace mechkin {
@@ -14,12 +16,12 @@ void SetupRangeCommand(CLI::App& app, RangeCommandOptions* o) {
   cmd->add_option("file", o->file, "Mechanism file")->required();
   cmd->add_option("--driver", o->driver, "Only this driver (default: each in turn, the others held at the design)");
   cmd->add_option("-o,--output", o->output, "Report file (default: stdout); written atomically");
-  cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember(NamesOf<ReportFormat>()));
   cmd->add_option("--steps", o->steps, "Steps per direction (a turn, or the search span; default 360)")
       ->check(CLI::Range(4, 10000000));
   cmd->add_option("--span", o->span, "Search span of translations and distances, file units (default 4x the size)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--tol", o->tolerance, "Position tolerance (default 1e-10)")->check(CLI::Range(1e-15, 1e-3));
+  cmd->add_option("--tol", o->tolerance, "Position tolerance (default 1e-10)")->check(ToleranceCheck());
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
 }
 
@@ -39,7 +41,7 @@ int RunRangeCommand(const RangeCommandOptions& o, std::ostream& out, std::ostrea
     return 1;
   }
   std::ostringstream text;
-  if (o.format == "json") text << RangeReportJson(report).dump(2) << "\n";
+  if (o.format == "json") text << RangeReportJsonText(report) << "\n";
   else PrintRangeReport(report, text);
   if (!WriteReport(o.output, {o.file}, text.str(), "range", out, err)) return 1;
   return 0;

@@ -8,9 +8,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "analysis/kinematic_analysis.hpp"
-#include "cli/commands/load_for_command.hpp"
+#include "analysis/enum_names.hpp"
 #include "analysis/motion.hpp"
+#include "cli/commands/load_for_command.hpp"
+#include "cli/commands/request_options.hpp"
 #include "io/async_sink.hpp"
 #include "io/interrupt.hpp"
 #include "io/table_writer.hpp"
@@ -21,28 +22,18 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
   CLI::App* cmd = app.add_subcommand("run", "Driven kinematic analysis: write the motion table");
   cmd->add_option("file", o->file, "Mechanism file (format v1)")->required();
   cmd->add_option("-o,--output", o->output, "Output file (default: stdout); written atomically");
-  cmd->add_option("--format", o->format, "Table format (csv, json)")->check(CLI::IsMember({"csv", "json"}));
-  cmd->add_option("--order", o->order, "Highest time derivative computed: 0 position ... 4 snap (default 3)")
-      ->check(CLI::Range(0, 4));
-  cmd->add_option("--formulation", o->formulation, "Rotational unknowns of the derivative solves (omega, p)")
-      ->check(CLI::IsMember({"omega", "p"}));
-  cmd->add_option("--solver", o->solver, "Position solver (newton, ceres)")->check(CLI::IsMember({"newton", "ceres"}));
-  cmd->add_option("--tol", o->tolerance, "Position tolerance relative to the mechanism size (default 1e-10)")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            char* end = nullptr;
-            const double v = std::strtod(text.c_str(), &end);
-            // Written so that NaN fails too.
-            if (end == text.c_str() || *end != '\0' || !(v >= 1e-15 && v <= 1e-3))
-              return "--tol must be a number in [1e-15, 1e-3], not '" + text + "'";
-            return "";
-          },
-          "in [1e-15, 1e-3]"));
-  cmd->add_flag("--forces", o->forces, "Also compute driver efforts, joint reactions and energies (default when the file has inertia or loads)");
+  cmd->add_option("--format", o->format, "Table format (csv, json)")->check(CLI::IsMember(NamesOf<TableFormat>()));
+  AddOrderOption(cmd, &o->request, "Highest time derivative shown: 0 position ... 4 snap (default 3)");
+  AddFormulationOption(cmd, &o->request);
+  AddSolverOption(cmd, &o->request);
+  AddToleranceOption(cmd, &o->request, "Position tolerance relative to the mechanism size (default 1e-10)");
+  cmd->add_flag("--forces", o->forces,
+                "Also compute driver efforts, joint reactions and energies (default when the file has inertia or "
+                "loads; solved with accelerations whatever --order shows)");
   cmd->add_flag("--no-forces", o->no_forces, "Kinematics only, even when the file has inertia or loads");
   cmd->add_flag("--keep-partial", o->keep_partial,
                 "On Ctrl-C (SIGINT) write the rows computed so far as a partial table instead of nothing");
-  cmd->add_flag("--si", o->si, "Write SI units (m, rad) instead of the file's units");
+  cmd->add_flag("--si", o->request.si, "Write SI units (m, rad) instead of the file's units");
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_option("--bodies", o->bodies, "Bodies whose columns are written (comma-separated; none: '')")->delimiter(',');
   cmd->add_option("--outputs", o->outputs, "Outputs whose columns are written (comma-separated)")->delimiter(',');
@@ -54,6 +45,16 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
     o->bodies_given = cmd->count("--bodies") > 0;
     o->outputs_given = cmd->count("--outputs") > 0;
   });
+}
+
+RunRequest RunOptions::Request() const {
+  RunRequest r = request;
+  if (bodies_given) r.bodies = bodies;
+  if (outputs_given) r.outputs = outputs;
+  r.forces = no_forces ? ForcesChoice::Off : forces ? ForcesChoice::On : ForcesChoice::Auto;
+  r.sensitivity = sensitivity;
+  r.keep_step_diagnostics = false;  // streamed: the table's diagnostic columns carry them
+  return r;
 }
 
 namespace {
@@ -145,23 +146,6 @@ void ReportSetAside(const AnalysisReport& rep, std::ostream& err) {
     err << "mechkin run: ... and " << rep.reselections.size() - kListedSetAside << " more re-selections\n";
 }
 
-AnalysisOptions AnalysisOptionsOf(const RunOptions& o, const Model& model, const MotionLayout& layout) {
-  AnalysisOptions a;
-  a.order = o.order;
-  a.formulation = o.formulation == "p" ? Formulation::P : Formulation::Omega;
-  a.solver = o.solver == "ceres" ? PositionSolver::Ceres : PositionSolver::Newton;
-  a.tolerance = o.tolerance;
-  a.keep_step_diagnostics = false;
-  a.forces = layout.options().forces;
-  a.sensitivity_parameters = layout.options().sensitivity;
-  if (o.bodies_given || o.outputs_given) {
-    // Only the bodies the table shows, or that its outputs read, are needed.
-    a.needed_bodies = layout.NeededBodies(model);
-    if (a.needed_bodies.empty()) a.needed_bodies.push_back(-1);  // nothing requested: solve no block
-  }
-  return a;
-}
-
 void PrintStats(const AnalysisReport& rep, const std::vector<StepDiagnostics>& steps, std::ostream& err) {
   const StepStatistics st = SummarizeSteps(steps);
   char line[160];
@@ -172,6 +156,28 @@ void PrintStats(const AnalysisReport& rep, const std::vector<StepDiagnostics>& s
       << line << "\n";
 }
 
+// The request decided against the model, or false with the reason on `err`.
+bool PlanFor(const RunOptions& o, const Model& model, RunPlan* plan, std::ostream& err) {
+  const RunRequest request = o.Request();
+  std::string why;
+  if (!request.IsValid(&why)) {
+    err << "mechkin run: " << why << "\n";
+    return false;
+  }
+  for (const auto& p : request.sensitivity)
+    if (!model.FindParameter(p)) {
+      err << "mechkin run: --sensitivity: no parameter '" << p << "' in " << o.file << "\n";
+      return false;
+    }
+  try {
+    *plan = PlanRun(model, request);
+  } catch (const std::exception& e) {
+    err << "mechkin run: " << e.what() << "\n";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
@@ -180,28 +186,9 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides);
   if (!loaded) return 1;
   const Model& model = *loaded;
-  TableOptions topt;
-  topt.order = o.order;
-  topt.si = o.si;
-  topt.all_bodies = !o.bodies_given;
-  topt.all_outputs = !o.outputs_given;
-  topt.forces = (o.forces || model.HasForces()) && !o.no_forces;
-  for (const auto& b : o.bodies) if (!b.empty()) topt.bodies.push_back(b);
-  for (const auto& x : o.outputs) if (!x.empty()) topt.outputs.push_back(x);
-  for (const auto& p : o.sensitivity) {
-    if (!model.FindParameter(p)) {
-      err << "mechkin run: --sensitivity: no parameter '" << p << "' in " << o.file << "\n";
-      return 2;
-    }
-    topt.sensitivity.push_back(p);
-  }
-  std::unique_ptr<MotionLayout> layout;
-  try {
-    layout = std::make_unique<MotionLayout>(model, topt);
-  } catch (const std::exception& e) {
-    err << "mechkin run: " << e.what() << "\n";
-    return 2;
-  }
+  RunPlan plan;
+  if (!PlanFor(o, model, &plan, err)) return 2;
+  const auto layout = std::make_unique<MotionLayout>(model, plan.table);
   InstallInterruptHandlers(o.keep_partial);
   // The destination first: a path that cannot be written fails before the analysis.
   OutputFile file;
@@ -210,14 +197,16 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
     err << "mechkin run: " << why << "\n";
     return 1;
   }
-  TableWriter writer(*layout, o.format == "json" ? TableFormat::Json : TableFormat::Csv, &file);
+  TableFormat format = TableFormat::Csv;
+  Parse(o.format, &format);
+  TableWriter writer(*layout, format, &file);
   AsyncRowSink rows_out(&writer, layout->size());
   RowEvaluator eval(model, *layout);
   std::vector<double> row(layout->size());
   ProgressBar progress(err, model.analysis ? model.analysis->steps + 1 : 0);
-  ConditioningWatch watch(o.order, o.tolerance);
+  ConditioningWatch watch(plan.analysis.order, plan.analysis.tolerance);
   std::vector<StepDiagnostics> steps;
-  const AnalysisReport rep = RunKinematicAnalysis(model, AnalysisOptionsOf(o, model, *layout),
+  const AnalysisReport rep = RunKinematicAnalysis(model, plan.analysis,
                                                   [&](const SystemState& s, const StepDiagnostics& d) {
     eval.Evaluate(s, d, row.data());
     progress.Row();

@@ -6,25 +6,27 @@
 #include <string>
 #include <vector>
 
+#include "analysis/run_request.hpp"
+
 namespace mechkin {
 
 struct RunOptions {
   std::string file;
   std::string output;          // -o; empty = stdout
   std::string format = "csv";  // csv | json
-  int order = 3;               // highest derivative order computed (0..4)
-  std::string formulation = "omega";  // omega | p
-  std::string solver = "newton";      // newton | ceres
-  double tolerance = 1e-10;           // scaled residual
-  bool si = false;
+  // --order, --tol, --solver, --formulation, --si (defaults: RunRequest's); the
+  // selections and forces below are folded into it by Request().
+  RunRequest request;
   bool stats = false;
-  bool keep_partial = false;
-  bool forces = false, no_forces = false;         // SIGINT writes the rows so far (marked partial)
+  bool keep_partial = false;                // SIGINT writes the rows so far (marked partial)
+  bool forces = false, no_forces = false;   // --forces / --no-forces (default: when the file has inertia or loads)
   std::vector<std::string> bodies;   // --bodies: subset of body columns
   std::vector<std::string> outputs;  // --outputs: subset of output columns
   bool bodies_given = false, outputs_given = false;
   std::vector<std::string> set;          // --set NAME=VALUE: parameter overrides
   std::vector<std::string> sensitivity;  // --sensitivity: parameters to differentiate by
+  /// The whole request: `request` with the selections, forces and sensitivities.
+  RunRequest Request() const;
 };
 
 void SetupRunCommand(CLI::App& app, RunOptions* options);

@@ -2,6 +2,7 @@
 
 #include "analysis/sweep.hpp"
 #include "cli/commands/load_for_command.hpp"
+#include "cli/commands/request_options.hpp"
 #include "io/sweep_writer.hpp"
 
 namespace mechkin {
@@ -18,8 +19,8 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
   cmd->add_option("--seed", o->seed, "Seed of --samples (default 1)");
   cmd->add_option("--shard", o->shard, "i/N: run the variants with index = i-1 (mod N), for job arrays");
   cmd->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::Range(0, 4096));
-  cmd->add_option("--order", o->order, "Derivative orders summarised (default 1)")->check(CLI::Range(0, 4));
-  cmd->add_option("--tol", o->tolerance, "Position tolerance of every run (default 1e-10)")->check(CLI::Range(1e-15, 1e-3));
+  cmd->add_option("--order", o->order, "Derivative orders summarised (default 1)")->check(OrderCheck());
+  cmd->add_option("--tol", o->tolerance, "Position tolerance of every run (default 1e-10)")->check(ToleranceCheck());
   cmd->add_option("--set", o->set, "Parameter value replacing the file's for every variant: NAME=NUMBER");
   cmd->add_flag("--merge", o->merge, "Join shard files written with --format json");
 }
@@ -40,7 +41,7 @@ bool ParseShard(const std::string& s, SweepOptions* options) {
 }
 
 bool Write(const SweepCommandOptions& o, const SweepResult& result, std::ostream& out, std::ostream& err) {
-  const std::string text = o.format == "json" ? SweepJson(result).dump(1) + "\n" : SweepCsv(result);
+  const std::string text = o.format == "json" ? SweepJsonText(result) + "\n" : SweepCsv(result);
   return WriteReport(o.output, o.merge ? o.files : std::vector<std::string>{o.files.front()}, text, "sweep", out, err);
 }
 

@@ -2,8 +2,10 @@
 
 #include <sstream>
 
+#include "analysis/enum_names.hpp"
 #include "analysis/tolerance.hpp"
 #include "cli/commands/load_for_command.hpp"
+#include "cli/commands/request_options.hpp"
 #include "io/tolerance_report_writer.hpp"
 
 namespace mechkin {
@@ -13,15 +15,15 @@ void SetupToleranceCommand(CLI::App& app, ToleranceCommandOptions* o) {
       "tolerance", "Tolerance stack-up of the outputs: worst case and RSS from exact sensitivities, Monte-Carlo check");
   cmd->add_option("file", o->file, "Mechanism file whose parameters declare tolerances")->required();
   cmd->add_option("-o,--output", o->output, "Report file (default: stdout); written atomically");
-  cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember(NamesOf<ReportFormat>()));
   cmd->add_option("--order", o->order, "Derivative orders of the outputs analysed (default 0: positions)")
-      ->check(CLI::Range(0, 4));
+      ->check(OrderCheck());
   cmd->add_option("--monte-carlo", o->monte_carlo, "Also sample N variants uniformly within the tolerances")
       ->check(CLI::Range(0, 100000000));
   cmd->add_option("--seed", o->seed, "Seed of the Monte-Carlo samples (default 1)");
   cmd->add_option("--threads", o->threads, "Threads for the Monte-Carlo runs (default: all cores)")
       ->check(CLI::Range(0, 4096));
-  cmd->add_option("--tol", o->tolerance, "Position tolerance of every run (default 1e-10)")->check(CLI::Range(1e-15, 1e-3));
+  cmd->add_option("--tol", o->tolerance, "Position tolerance of every run (default 1e-10)")->check(ToleranceCheck());
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
 }
 
@@ -39,7 +41,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o, std::ostream& out, std
   options.analysis.keep_step_diagnostics = false;
   const ToleranceReport report = AnalyzeTolerances(*model, options);
   std::ostringstream text;
-  if (o.format == "json") text << ToleranceReportJson(report).dump(2) << "\n";
+  if (o.format == "json") text << ToleranceReportJsonText(report) << "\n";
   else PrintToleranceReport(report, text);
   if (!WriteReport(o.output, {o.file}, text.str(), "tolerance", out, err)) return 1;
   if (!report.ok) err << "mechkin tolerance: " << o.file << ": " << report.message << "\n";

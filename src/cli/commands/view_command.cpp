@@ -1,8 +1,9 @@
 #include "cli/commands/view_command.hpp"
 
-#include "analysis/motion.hpp"
-#include "io/viewer.hpp"
+#include "analysis/run_request.hpp"
 #include "cli/commands/load_for_command.hpp"
+#include "cli/commands/request_options.hpp"
+#include "io/viewer.hpp"
 
 namespace mechkin {
 
@@ -11,11 +12,13 @@ void SetupViewCommand(CLI::App& app, ViewOptions* o) {
   cmd->add_option("file", o->file, "Mechanism file")->required();
   cmd->add_option("-o,--output", o->output, "The page (default: FILE's name with .html, in the current folder)");
   cmd->add_option("--gltf", o->gltf, "Also write the scene and its animation as glTF 2.0 (.glb or .gltf)");
-  cmd->add_option("--order", o->order, "Highest time derivative (plots; default 2)")->check(CLI::Range(0, 4));
-  cmd->add_option("--tol", o->tolerance, "Position tolerance (default 1e-10)")->check(CLI::Range(1e-15, 1e-3));
-  cmd->add_option("--solver", o->solver, "Position solver (newton, ceres)")->check(CLI::IsMember({"newton", "ceres"}));
+  AddOrderOption(cmd, &o->request, "Highest time derivative (plots; default 2)");
+  AddToleranceOption(cmd, &o->request, "Position tolerance (default 1e-10)");
+  AddSolverOption(cmd, &o->request);
   cmd->add_option("--max-frames", o->max_frames, "Rows shown in the page (longer runs are decimated)")->check(CLI::Range(2, 1000000));
-  cmd->add_flag("--forces", o->forces, "Also compute efforts and reactions (default when the file has inertia or loads)");
+  cmd->add_flag("--forces", o->forces,
+                "Also compute efforts and reactions (default when the file has inertia or loads; solved with "
+                "accelerations whatever --order shows)");
   cmd->add_flag("--no-forces", o->no_forces, "Kinematics only");
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
   cmd->add_option("--up", o->up, "Axis drawn upwards when the file has no gravity (default y)")->check(CLI::IsMember({"x", "y", "z"}));
@@ -32,26 +35,30 @@ std::string DefaultPage(const std::string& file) {
 
 }  // namespace
 
+RunRequest ViewOptions::Request() const {
+  RunRequest r = request;
+  r.forces = no_forces ? ForcesChoice::Off : forces ? ForcesChoice::On : ForcesChoice::Auto;
+  return r;
+}
+
 int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   ParameterOverrides overrides;
   if (!ParseOverrides(o.set, &overrides, err)) return 2;
   const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides);
   if (!loaded) return 1;
   const Model& model = *loaded;
-  TableOptions t;
-  t.order = o.order;
-  t.forces = (o.forces || model.HasForces()) && !o.no_forces && o.order >= 2;
-  AnalysisOptions a;
-  a.tolerance = o.tolerance;
-  a.solver = o.solver == "ceres" ? PositionSolver::Ceres : PositionSolver::Newton;
-  a.keep_step_diagnostics = false;
-  const Motion motion = RunMotion(model, a, t);
+  const RunRequest request = o.Request();
+  std::string why;
+  if (!request.IsValid(&why)) {
+    err << "mechkin view: " << why << "\n";
+    return 2;
+  }
+  const Motion motion = RunMotion(model, request);
   if (!motion.complete) err << "mechkin view: " << o.file << ": " << motion.stop.message << "\n";
   if (motion.rows() == 0) return 1;  // nothing to show
   SceneOptions scene;
   scene.max_frames = o.max_frames;
   scene.up = o.up == "x" ? Vec3::UnitX() : o.up == "z" ? Vec3::UnitZ() : Vec3::UnitY();
-  std::string why;
   if (!o.plots.empty() && !ParsePlots(motion, o.plots, &scene.plots, &why)) {
     err << "mechkin view: " << why << "\n";
     return 2;

@@ -6,17 +6,25 @@
 #include <string>
 #include <vector>
 
+#include "analysis/run_request.hpp"
+
 namespace mechkin {
 
 struct ViewOptions {
   std::string file;
   std::string output;          // -o; default: the file's stem + .html
   std::string gltf;            // --gltf: .glb or .gltf
-  int order = 2;
-  double tolerance = 1e-10;
-  std::string solver = "newton";
+  RunRequest request = DefaultViewRequest();  // --order (default 2), --tol, --solver
   int max_frames = 2000;
   bool forces = false, no_forces = false;
+  /// `request` with the forces choice.
+  RunRequest Request() const;
+  static RunRequest DefaultViewRequest() {
+    RunRequest r;
+    r.order = 2;  // the plots: positions, velocities, accelerations
+    r.keep_step_diagnostics = false;
+    return r;
+  }
   std::vector<std::string> set;  // --set NAME=NUMBER, as `run`
   std::string up = "y";          // --up x|y|z when the file has no gravity
   std::string plots;             // --plots "a,b;c": panels of columns

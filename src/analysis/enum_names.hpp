@@ -1,0 +1,142 @@
+// Every enum ↔ string pair the front ends read or write (CLI options, table and
+// report formats, the Python binding, diagnostics), in one place: ToString(e)
+// gives the name as a user types it, Parse(text, &e) the reverse, NamesOf<E>()
+// every name in declaration order (for CLI11's IsMember and error messages).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/kinematic_analysis.hpp"
+#include "analysis/motion.hpp"
+#include "mobility/mobility.hpp"
+#include "model/model.hpp"
+
+namespace mechkin {
+
+/// Format of a motion table (`run --format`, Motion.to_csv/to_json).
+enum class TableFormat { Csv, Json };
+/// Format of a report (`check`, `range`, `tolerance --format`).
+enum class ReportFormat { Text, Json };
+
+template <typename E>
+struct EnumName {
+  E value;
+  const char* name;
+};
+
+/// The names of an enum; specialised below for every enum with a user-visible name.
+template <typename E>
+struct EnumNames;
+
+template <>
+struct EnumNames<Formulation> {
+  static constexpr EnumName<Formulation> kAll[] = {{Formulation::Omega, "omega"}, {Formulation::P, "p"}};
+};
+template <>
+struct EnumNames<PositionSolver> {
+  static constexpr EnumName<PositionSolver> kAll[] = {{PositionSolver::Newton, "newton"},
+                                                      {PositionSolver::Ceres, "ceres"}};
+};
+template <>
+struct EnumNames<TableFormat> {
+  static constexpr EnumName<TableFormat> kAll[] = {{TableFormat::Csv, "csv"}, {TableFormat::Json, "json"}};
+};
+template <>
+struct EnumNames<ReportFormat> {
+  static constexpr EnumName<ReportFormat> kAll[] = {{ReportFormat::Text, "text"}, {ReportFormat::Json, "json"}};
+};
+// The file format's joint types (docs/format.md); model.cpp's JointTypeName gives the
+// same names (a test holds them equal until the joint descriptors own them).
+template <>
+struct EnumNames<JointType> {
+  static constexpr EnumName<JointType> kAll[] = {
+      {JointType::Revolute, "revolute"},       {JointType::Prismatic, "prismatic"}, {JointType::Screw, "screw"},
+      {JointType::Cylindrical, "cylindrical"}, {JointType::Universal, "universal"}, {JointType::Spherical, "spherical"},
+      {JointType::Planar, "planar"},           {JointType::Distance, "distance"}};
+};
+// Why a run ended (Python's RunStop.kind, pickled motions).
+template <>
+struct EnumNames<StopKind> {
+  static constexpr EnumName<StopKind> kAll[] = {{StopKind::None, "none"},
+                                                {StopKind::Refused, "refused"},
+                                                {StopKind::AssemblyFailed, "assembly_failed"},
+                                                {StopKind::SingularPosition, "singular_position"},
+                                                {StopKind::SolveFailed, "solve_failed"},
+                                                {StopKind::Interrupted, "interrupted"}};
+};
+// `check`'s driving status (the `expect` key "driven").
+template <>
+struct EnumNames<DrivingStatus> {
+  static constexpr EnumName<DrivingStatus> kAll[] = {
+      {DrivingStatus::Full, "full"}, {DrivingStatus::Under, "under"}, {DrivingStatus::Over, "over"}};
+};
+// A motion column's quantity (Python's column descriptors).
+template <>
+struct EnumNames<Quantity> {
+  static constexpr EnumName<Quantity> kAll[] = {
+      {Quantity::Time, "time"},
+      {Quantity::BodyPosition, "body_position"},
+      {Quantity::EulerParameter, "euler_parameter"},
+      {Quantity::AngularVelocity, "angular_velocity"},
+      {Quantity::PointPosition, "point"},
+      {Quantity::Distance, "distance"},
+      {Quantity::JointAngle, "joint_angle"},
+      {Quantity::JointSlide, "joint_slide"},
+      {Quantity::Angle, "angle"},
+      {Quantity::VelocityRatio, "velocity_ratio"},
+      {Quantity::OrientationAngle, "orientation_angle"},
+      {Quantity::OrientationParameter, "orientation_parameter"},
+      {Quantity::RotationVector, "rotation_vector"},
+      {Quantity::GimbalLock, "gimbal_lock"},
+      {Quantity::DriverEffort, "driver_effort"},
+      {Quantity::DriverPower, "driver_power"},
+      {Quantity::JointForce, "joint_force"},
+      {Quantity::JointMoment, "joint_moment"},
+      {Quantity::JointForceLocal, "joint_force_local"},
+      {Quantity::JointMomentLocal, "joint_moment_local"},
+      {Quantity::KineticEnergy, "kinetic_energy"},
+      {Quantity::PotentialEnergy, "potential_energy"},
+      {Quantity::EnergyBalance, "energy_balance"},
+      {Quantity::NewtonIterations, "newton_iterations"},
+      {Quantity::Residual, "residual"},
+      {Quantity::Condition, "condition"},
+      {Quantity::ErrorBound, "error_bound"}};
+};
+
+/// The name of `value` ("" for a value without one).
+template <typename E>
+const char* ToString(E value) {
+  for (const auto& e : EnumNames<E>::kAll)
+    if (e.value == value) return e.name;
+  return "";
+}
+
+/// The value named `text` (exact, lower case); false and *value untouched when none is.
+template <typename E>
+bool Parse(const std::string& text, E* value) {
+  for (const auto& e : EnumNames<E>::kAll)
+    if (text == e.name) {
+      *value = e.value;
+      return true;
+    }
+  return false;
+}
+
+/// Every name, in declaration order.
+template <typename E>
+std::vector<std::string> NamesOf() {
+  std::vector<std::string> names;
+  for (const auto& e : EnumNames<E>::kAll) names.push_back(e.name);
+  return names;
+}
+
+/// "omega, p": the names for a message.
+template <typename E>
+std::string NameList() {
+  std::string s;
+  for (const auto& e : EnumNames<E>::kAll) s += (s.empty() ? "" : ", ") + std::string(e.name);
+  return s;
+}
+
+}  // namespace mechkin

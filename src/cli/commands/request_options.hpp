@@ -1,0 +1,27 @@
+// The run request's options on the command line: every command that runs the
+// analysis (run, view, range, tolerance, sweep) declares --order, --tol, --solver
+// and --formulation through these, so CLI11 checks each value with
+// RunRequest::IsValid and prints its message ("--tol: tol must be ...").
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "analysis/run_request.hpp"
+
+namespace mechkin {
+
+/// Checks of an option's text: it is put into a default RunRequest's order or
+/// tolerance and RunRequest::IsValid answers (for commands whose options are not a request).
+CLI::Validator OrderCheck();
+CLI::Validator ToleranceCheck();
+/// --order into `request->order`, checked by RunRequest::IsValid.
+CLI::Option* AddOrderOption(CLI::App* cmd, RunRequest* request, const std::string& description);
+/// --tol into `request->tolerance`, checked by RunRequest::IsValid.
+CLI::Option* AddToleranceOption(CLI::App* cmd, RunRequest* request, const std::string& description);
+/// --solver NAME into `request->solver` (names: analysis/enum_names.hpp).
+CLI::Option* AddSolverOption(CLI::App* cmd, RunRequest* request);
+/// --formulation NAME into `request->formulation`.
+CLI::Option* AddFormulationOption(CLI::App* cmd, RunRequest* request);
+
+}  // namespace mechkin
