@@ -445,3 +445,25 @@ def test_set_changes_the_picture(cli, tmp_path):
     assert page_data(a)["bodies"][0]["poses"] != page_data(b)["bodies"][0]["poses"]
     bad = subprocess.run([cli, "view", src, "-o", str(tmp_path / "c.html"), "--set", "nope"], capture_output=True, text=True)
     assert bad.returncode == 2
+
+
+def test_bounds_and_plane_of_a_turning_bar(cli, tmp_path):
+    # A bar from the pivot (0, 0, 0) to a tip (1, 0, 0) m turning a full turn about z in
+    # 5° steps: the drawn points stay in the disc of radius 1 in z = 0 and reach (±1, ±1)
+    # (the steps include 90°, 180°, 270°), so the whole run's box is [−1, 1]² × {0} and
+    # the motion is planar with normal ±z.
+    doc = {"mechkin": 1, "name": "one bar", "units": {"length": "m", "angle": "deg"},
+           "bodies": [{"name": "bar", "position": [0.5, 0, 0]}],
+           "joints": [{"name": "pivot", "type": "revolute", "body1": "ground", "body2": "bar", "origin": [0, 0, 0], "axis": [0, 0, 1]}],
+           "drivers": [{"name": "motor", "type": "rotation", "joint": "pivot", "function": "360*t"}],
+           "outputs": [{"name": "tip", "type": "point", "body": "bar", "point": [1, 0, 0]}],
+           "analysis": {"start": 0, "end": 1, "steps": 72}}
+    src = tmp_path / "bar.json"
+    src.write_text(json.dumps(doc))
+    page = tmp_path / "bar.html"
+    view(cli, str(src), page)
+    data = page_data(page)
+    assert np.allclose(data["bounds"]["lo"], [-1, -1, 0], atol=1e-9)
+    assert np.allclose(data["bounds"]["hi"], [1, 1, 0], atol=1e-9)
+    assert np.allclose(np.abs(data["planar"]), [0, 0, 1], atol=1e-9)
+    assert data["plots"] == [["tip.x", "tip.y"]]  # the output, without its constant z

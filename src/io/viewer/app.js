@@ -15,6 +15,7 @@
   const errors = window.MECHKIN_ERRORS || [];
   function flushErrors() { if (errors.length) document.body.setAttribute("data-errors", errors.join(" | ")); }
   const hash = new URLSearchParams(location.hash.slice(1));
+  const svgNs = "http://www.w3.org/2000/svg";
 
   const view = document.getElementById("view");
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
@@ -371,13 +372,101 @@
     view: setView, ortho: setOrtho, fit: fit, svg: plots.svgText, csv: plots.csvText,
   };
 
+  // Plot helpers.
+  function title(s) { return s.name + (s.unit ? " [" + s.unit + "]" : ""); }
+  function el(name, attrs, text) {
+    const e = document.createElementNS(svgNs, name);
+    for (const k in attrs) e.setAttribute(k, attrs[k]);
+    if (text !== undefined) e.appendChild(document.createTextNode(text));
+    return e;
+  }
+  function range(values, out) {
+    values.forEach(function (v) { if (isFinite(v)) { out[0] = Math.min(out[0], v); out[1] = Math.max(out[1], v); } });
+    return out;
+  }
+  // Round tick steps (1, 2, 5 × 10^k), about `count` across [lo, hi].
+  function ticks(lo, hi, count) {
+    const raw = (hi - lo) / count, mag = Math.pow(10, Math.floor(Math.log10(raw)));
+    const step = [1, 2, 5, 10].map(function (f) { return f * mag; }).find(function (s) { return s >= raw; });
+    const out = [], digits = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
+    for (let v = Math.ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-9; v += step)
+      out.push({ v: v, text: Math.abs(v) >= 1e6 ? v.toExponential(2) : (Math.abs(v) < step * 1e-6 ? 0 : v).toFixed(Math.min(digits, 10)) });
+    return out;
+  }
+  function padded(r) {
+    if (!(r[1] > r[0])) { const m = Math.abs(r[0]) * 0.05 || 1; return [r[0] - m, r[0] + m]; }
+    const m = 0.04 * (r[1] - r[0]);
+    return [r[0] - m, r[1] + m];
+  }
+  function download(text, type, name) {
+    const a = document.createElement("a");
+    a.href = URL.createObjectURL(new Blob([text], { type: type }));
+    a.download = name;
+    document.body.appendChild(a);
+    a.click();
+    setTimeout(function () { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+  }
+  // The page's table (decimated as the page is) with the table's headers.
+  function csvText() {
+    const head = ["t [s]"].concat(D.series.map(title)).map(function (h) { return /[",]/.test(h) ? '"' + h.replace(/"/g, '""') + '"' : h; });
+    const lines = [head.join(",")];
+    for (let k = 0; k < n; ++k) lines.push([T[k]].concat(D.series.map(function (s) { return s.values[k] === null ? "" : s.values[k]; })).join(","));
+    return lines.join("\n") + "\n";
+  }
+
+  // One panel: its frame, ticks and grid on both axes, unit, series, legend, marks and cursor.
+  function drawPanel(members, index, W, H, axis) {
+    const M = { l: 62, r: 18, t: 12 + 16 * Math.ceil(members.length / 2), b: 36 };
+    const svg = el("svg", { xmlns: svgNs, width: W, height: H, viewBox: "0 0 " + W + " " + H, "font-family": "sans-serif", "font-size": 11, class: "plot" });
+    const yr = padded(members.reduce(function (r, i) { return range(D.series[i].values, r); }, [Infinity, -Infinity]));
+    const X = function (v) { return M.l + (W - M.l - M.r) * (v - axis.lo) / (axis.hi - axis.lo); };
+    const Y = function (v) { return H - M.b - (H - M.t - M.b) * (v - yr[0]) / (yr[1] - yr[0]); };
+    svg.appendChild(el("rect", { x: M.l, y: M.t, width: W - M.l - M.r, height: H - M.t - M.b, fill: "white", stroke: "#999" }));
+    const unit = D.series[members[0]].unit;
+    ticks(yr[0], yr[1], Math.max(3, Math.floor((H - M.t - M.b) / 40))).forEach(function (k) {
+      svg.appendChild(el("line", { x1: M.l, x2: W - M.r, y1: Y(k.v), y2: Y(k.v), stroke: "#e4e4e4", class: "grid" }));
+      svg.appendChild(el("text", { x: M.l - 4, y: Y(k.v) + 4, "text-anchor": "end", class: "tick" }, k.text));
+    });
+    ticks(axis.lo, axis.hi, 6).forEach(function (k) {
+      svg.appendChild(el("line", { x1: X(k.v), x2: X(k.v), y1: M.t, y2: H - M.b, stroke: "#e4e4e4", class: "grid" }));
+      svg.appendChild(el("text", { x: X(k.v), y: H - M.b + 14, "text-anchor": "middle", class: "tick" }, k.text));
+    });
+    svg.appendChild(el("text", { x: 12, y: (M.t + H - M.b) / 2, transform: "rotate(-90 12 " + (M.t + H - M.b) / 2 + ")", "text-anchor": "middle" },
+      unit ? "[" + unit + "]" : "value"));
+    svg.appendChild(el("text", { x: (M.l + W - M.r) / 2, y: H - 4, "text-anchor": "middle" }, axis.label));
+    const values = [];
+    members.forEach(function (si, i) {
+      const s = D.series[si], color = hex(palette[(index * 3 + i) % palette.length]);
+      let d = "";
+      s.values.forEach(function (v, k) { if (isFinite(v) && isFinite(axis.xs[k])) d += (d ? "L" : "M") + X(axis.xs[k]).toFixed(1) + "," + Y(v).toFixed(1); });
+      svg.appendChild(el("path", { d: d, fill: "none", stroke: color, "stroke-width": 1.6, class: "series", "data-name": s.name }));
+    });
+    members.forEach(function (si, i) {  // the legend, two entries a row, each with the value at the cursor
+      const s = D.series[si], color = hex(palette[(index * 3 + i) % palette.length]);
+      const lx = M.l + (i % 2) * (W - M.l - M.r) / 2, ly = 12 + 16 * Math.floor(i / 2);
+      svg.appendChild(el("line", { x1: lx, x2: lx + 16, y1: ly - 4, y2: ly - 4, stroke: color, "stroke-width": 3 }));
+      const legend = el("text", { x: lx + 20, y: ly, class: "legend" }, title(s));
+      const value = el("tspan", { class: "value", "font-weight": "bold" }, "");
+      legend.appendChild(value);
+      svg.appendChild(legend);
+      values.push({ s: s, node: value });
+    });
+    D.marks.forEach(function (m) {
+      const line = el("line", { x1: 0, x2: 0, y1: M.t, y2: H - M.b, stroke: m.kind === "reselection" ? "#e08000" : "red",
+        "stroke-dasharray": "4 2", class: "mark mark-" + m.kind, "data-t": m.t });
+      line.appendChild(el("title", {}, m.label + " at t = " + m.t + " s"));
+      svg.appendChild(line);
+    });
+    const cursorLine = el("line", { x1: 0, x2: 0, y1: M.t, y2: H - M.b, stroke: "#333", class: "cursor" });
+    svg.appendChild(cursorLine);
+    return { svg: svg, X: X, marks: svg.querySelectorAll(".mark"), cursorLine: cursorLine, values: values };
+  }
+
   // Plots: panels of columns (one axis and unit each) against time or any
   // column, with ticks and grids on both axes, a legend with the values at the
   // cursor, the events of the run marked, each downloadable as SVG.
   function makePlots() {
     const side = document.getElementById("panels"), pick = document.getElementById("columns"), xsel = document.getElementById("xaxis");
-    const ns = "http://www.w3.org/2000/svg";
-    function title(s) { return s.name + (s.unit ? " [" + s.unit + "]" : ""); }
     const byName = new Map(D.series.map(function (s, i) { return [s.name, i]; }));
     D.series.forEach(function (s, i) { const o = document.createElement("option"); o.value = i; o.textContent = title(s); pick.appendChild(o); });
     { const o = document.createElement("option"); o.value = -1; o.textContent = "t [s]"; xsel.appendChild(o); }
@@ -386,77 +475,7 @@
       .filter(function (p) { return p.length; });
     Array.prototype.forEach.call(pick.options, function (o) { o.selected = panels.some(function (p) { return p.indexOf(Number(o.value)) >= 0; }); });
     let drawn = [], xs = T, xlo = T[0], xhi = T[n - 1];
-    function el(name, attrs, text) {
-      const e = document.createElementNS(ns, name);
-      for (const k in attrs) e.setAttribute(k, attrs[k]);
-      if (text !== undefined) e.appendChild(document.createTextNode(text));
-      return e;
-    }
-    function range(values, out) {
-      values.forEach(function (v) { if (isFinite(v)) { out[0] = Math.min(out[0], v); out[1] = Math.max(out[1], v); } });
-      return out;
-    }
-    // Round tick steps (1, 2, 5 × 10^k), about `count` across [lo, hi].
-    function ticks(lo, hi, count) {
-      const raw = (hi - lo) / count, mag = Math.pow(10, Math.floor(Math.log10(raw)));
-      const step = [1, 2, 5, 10].map(function (f) { return f * mag; }).find(function (s) { return s >= raw; });
-      const out = [], digits = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
-      for (let v = Math.ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-9; v += step)
-        out.push({ v: v, text: Math.abs(v) >= 1e6 ? v.toExponential(2) : (Math.abs(v) < step * 1e-6 ? 0 : v).toFixed(Math.min(digits, 10)) });
-      return out;
-    }
-    function padded(r) {
-      if (!(r[1] > r[0])) { const m = Math.abs(r[0]) * 0.05 || 1; return [r[0] - m, r[0] + m]; }
-      const m = 0.04 * (r[1] - r[0]);
-      return [r[0] - m, r[1] + m];
-    }
     function rowAt(t) { return frameAt(t)[0]; }
-    function drawPanel(members, index, W, H) {
-      const M = { l: 62, r: 18, t: 12 + 16 * Math.ceil(members.length / 2), b: 36 };
-      const svg = el("svg", { xmlns: ns, width: W, height: H, viewBox: "0 0 " + W + " " + H, "font-family": "sans-serif", "font-size": 11, class: "plot" });
-      const yr = padded(members.reduce(function (r, i) { return range(D.series[i].values, r); }, [Infinity, -Infinity]));
-      const X = function (v) { return M.l + (W - M.l - M.r) * (v - xlo) / (xhi - xlo); };
-      const Y = function (v) { return H - M.b - (H - M.t - M.b) * (v - yr[0]) / (yr[1] - yr[0]); };
-      svg.appendChild(el("rect", { x: M.l, y: M.t, width: W - M.l - M.r, height: H - M.t - M.b, fill: "white", stroke: "#999" }));
-      const unit = D.series[members[0]].unit;
-      ticks(yr[0], yr[1], Math.max(3, Math.floor((H - M.t - M.b) / 40))).forEach(function (k) {
-        svg.appendChild(el("line", { x1: M.l, x2: W - M.r, y1: Y(k.v), y2: Y(k.v), stroke: "#e4e4e4", class: "grid" }));
-        svg.appendChild(el("text", { x: M.l - 4, y: Y(k.v) + 4, "text-anchor": "end", class: "tick" }, k.text));
-      });
-      ticks(xlo, xhi, 6).forEach(function (k) {
-        svg.appendChild(el("line", { x1: X(k.v), x2: X(k.v), y1: M.t, y2: H - M.b, stroke: "#e4e4e4", class: "grid" }));
-        svg.appendChild(el("text", { x: X(k.v), y: H - M.b + 14, "text-anchor": "middle", class: "tick" }, k.text));
-      });
-      svg.appendChild(el("text", { x: 12, y: (M.t + H - M.b) / 2, transform: "rotate(-90 12 " + (M.t + H - M.b) / 2 + ")", "text-anchor": "middle" },
-        unit ? "[" + unit + "]" : "value"));
-      svg.appendChild(el("text", { x: (M.l + W - M.r) / 2, y: H - 4, "text-anchor": "middle" }, xsel.options[xsel.selectedIndex].textContent));
-      const values = [];
-      members.forEach(function (si, i) {
-        const s = D.series[si], color = hex(palette[(index * 3 + i) % palette.length]);
-        let d = "";
-        s.values.forEach(function (v, k) { if (isFinite(v) && isFinite(xs[k])) d += (d ? "L" : "M") + X(xs[k]).toFixed(1) + "," + Y(v).toFixed(1); });
-        svg.appendChild(el("path", { d: d, fill: "none", stroke: color, "stroke-width": 1.6, class: "series", "data-name": s.name }));
-      });
-      members.forEach(function (si, i) {  // the legend, two entries a row, each with the value at the cursor
-        const s = D.series[si], color = hex(palette[(index * 3 + i) % palette.length]);
-        const lx = M.l + (i % 2) * (W - M.l - M.r) / 2, ly = 12 + 16 * Math.floor(i / 2);
-        svg.appendChild(el("line", { x1: lx, x2: lx + 16, y1: ly - 4, y2: ly - 4, stroke: color, "stroke-width": 3 }));
-        const legend = el("text", { x: lx + 20, y: ly, class: "legend" }, title(s));
-        const value = el("tspan", { class: "value", "font-weight": "bold" }, "");
-        legend.appendChild(value);
-        svg.appendChild(legend);
-        values.push({ s: s, node: value });
-      });
-      D.marks.forEach(function (m) {
-        const line = el("line", { x1: 0, x2: 0, y1: M.t, y2: H - M.b, stroke: m.kind === "reselection" ? "#e08000" : "red",
-          "stroke-dasharray": "4 2", class: "mark mark-" + m.kind, "data-t": m.t });
-        line.appendChild(el("title", {}, m.label + " at t = " + m.t + " s"));
-        svg.appendChild(line);
-      });
-      const cursorLine = el("line", { x1: 0, x2: 0, y1: M.t, y2: H - M.b, stroke: "#333", class: "cursor" });
-      svg.appendChild(cursorLine);
-      return { svg: svg, X: X, marks: svg.querySelectorAll(".mark"), cursorLine: cursorLine, values: values };
-    }
     function draw() {
       while (side.firstChild) side.removeChild(side.firstChild);
       xs = Number(xsel.value) < 0 ? T : D.series[Number(xsel.value)].values;
@@ -467,7 +486,7 @@
       const W = Math.max(320, side.clientWidth - 4);
       const H = Math.max(180, Math.min(320, Math.floor((side.clientHeight - 8) / Math.max(panels.length, 1)) - 26));
       drawn = panels.map(function (members, p) {
-        const d = drawPanel(members, p, W, H), box = document.createElement("div"), head = document.createElement("div");
+        const d = drawPanel(members, p, W, H, { xs: xs, lo: xlo, hi: xhi, label: xsel.options[xsel.selectedIndex].textContent }), box = document.createElement("div"), head = document.createElement("div");
         box.className = "panel";
         const save = document.createElement("a");
         save.textContent = "SVG";
@@ -493,21 +512,6 @@
     }
     function plotFileName(p) { return (D.name || "mechanism").replace(/[^\w.-]+/g, "_") + "-plot" + (p + 1); }
     function svgText(p) { return '<?xml version="1.0" encoding="UTF-8"?>\n' + new XMLSerializer().serializeToString(drawn[p].svg); }
-    // The page's table (decimated as the page is) with the table's headers.
-    function csvText() {
-      const head = ["t [s]"].concat(D.series.map(title)).map(function (h) { return /[",]/.test(h) ? '"' + h.replace(/"/g, '""') + '"' : h; });
-      const lines = [head.join(",")];
-      for (let k = 0; k < n; ++k) lines.push([T[k]].concat(D.series.map(function (s) { return s.values[k] === null ? "" : s.values[k]; })).join(","));
-      return lines.join("\n") + "\n";
-    }
-    function download(text, type, name) {
-      const a = document.createElement("a");
-      a.href = URL.createObjectURL(new Blob([text], { type: type }));
-      a.download = name;
-      document.body.appendChild(a);
-      a.click();
-      setTimeout(function () { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
-    }
     document.getElementById("csv").onclick = function (e) { e.preventDefault(); download(csvText(), "text/csv", plotFileName(0).replace(/-plot1$/, "") + ".csv"); };
     // Choosing columns by hand: one panel per unit, in the menu's order.
     pick.onchange = function () {
@@ -533,9 +537,10 @@
     Array.prototype.forEach.call(plots.xaxis.options, function (o, i) { if (o.textContent.split(" [")[0] === hash.get("x")) plots.xaxis.selectedIndex = i; });
     plots.draw();
   }
-  // Opens playing in a loop; #paused, or a time asked for (#t=), shows a still.
+  // Opens playing in a loop; #paused, or a time asked for (#t=), shows a still
+  // (#t=0.3&play plays from there).
   setTime(hash.has("t") ? Number(hash.get("t")) : T[0]);
-  setPlaying(!hash.has("paused") && !hash.has("t"));
+  setPlaying(hash.has("play") || (!hash.has("paused") && !hash.has("t")));
   renderer.render(scene, camera);
   if (hash.has("probe")) { probe = Number(hash.get("probe")); reportProbe(probe); }
   if (hash.has("export")) {
@@ -545,5 +550,6 @@
   status.textContent = D.stop.complete ? "" : "run stopped at t = " + D.stop.t + " s: " + D.stop.message;
   flushErrors();
   document.body.setAttribute("data-ready", "1");
+  document.body.setAttribute("data-ready-ms", performance.now().toFixed(0));  // since navigation start
   requestAnimationFrame(tick);
 })();
