@@ -117,12 +117,11 @@ py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, uns
   Require(monte_carlo >= 0 && monte_carlo <= 100000000, "monte_carlo must be between 0 and 100000000");
   Require(threads >= 0 && threads <= 4096, "threads must be between 0 (all cores) and 4096");
   ToleranceOptions options;
-  options.order = order;
+  options.request.order = order;
+  options.request.tolerance = tol;
   options.monte_carlo = monte_carlo;
   options.seed = seed;
   options.threads = threads;
-  options.analysis.tolerance = tol;
-  options.analysis.keep_step_diagnostics = false;
   ToleranceReport report;
   {
     py::gil_scoped_release release;
@@ -286,8 +285,8 @@ void ToTable(const PyMotion& pm, const std::string& path, const std::string& for
 py::dict RunVariantSummary(const LoadedModel& lm, const ParameterOverrides& values, int order, double tol) {
   ValidateOrderAndTolerance(order, tol);
   SweepOptions options;
-  options.order = order;
-  options.analysis.tolerance = tol;
+  options.request.order = order;
+  options.request.tolerance = tol;
   VariantSummary v;
   {
     py::gil_scoped_release release;

@@ -3,28 +3,58 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "analysis/assembly.hpp"
 #include "analysis/error_bounds.hpp"
 #include "analysis/row_selection.hpp"
-#include "analysis/run_request.hpp"
 
 namespace mechkin {
 
-// The fields a request has are checked by RunRequest::IsValid (one range, one message);
-// what is left is the solver's own precondition, which PlanRun always meets.
+namespace {
+
+std::string Shown(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
+
+std::string OrderProblem(const std::string& shown) {
+  return "order must be an integer in 0..4 (0 position, 1 velocity, 2 acceleration, 3 jerk, 4 snap), not " + shown;
+}
+
+std::string ToleranceProblem(const std::string& shown) {
+  return "tol must be a number in [1e-15, 1e-3] (the position tolerance relative to the mechanism size), not " +
+         shown;
+}
+
+bool CheckSolverFields(int order, double tolerance, int max_iterations, int predictor_order, bool sensitivities,
+                       Formulation formulation, PositionSolver solver, std::string* why) {
+  auto fail = [why](const std::string& message) {
+    *why = message;
+    return false;
+  };
+  if (order < 0 || order > kMaxOrder) return fail(OrderProblem(std::to_string(order)));
+  // Written so that NaN fails too.
+  if (!(tolerance >= kMinTolerance && tolerance <= kMaxTolerance)) return fail(ToleranceProblem(Shown(tolerance)));
+  if (max_iterations < 1) return fail("max_iterations must be 1 or more, not " + std::to_string(max_iterations));
+  if (predictor_order < 0 || predictor_order > 3)
+    return fail("predictor order must be an integer in 0..3, not " + std::to_string(predictor_order));
+  if (sensitivities && (formulation != Formulation::Omega || solver != PositionSolver::Newton))
+    return fail("sensitivities use the default formulation and solver (omega, newton)");
+  return true;
+}
+
+// The fields a request has are checked as RunRequest::IsValid checks them (one
+// range, one message); then the solver's own precondition, which PlanRun always meets.
 bool AnalysisOptions::IsValid(std::string* error) const {
-  RunRequest r;
-  r.order = order;
-  r.tolerance = tolerance;
-  r.max_iterations = max_iterations;
-  r.predictor_order = predictor_order;
-  r.formulation = formulation;
-  r.solver = solver;
-  r.sensitivity = sensitivity_parameters;
-  if (!r.IsValid(error)) return false;
-  if (forces && order < SolvedOrder(0, true)) {
+  if (!CheckSolverFields(order, tolerance, max_iterations, predictor_order, !sensitivity_parameters.empty(),
+                         formulation, solver, error))
+    return false;
+  if (forces && order < kForcesOrder) {
     *error = "forces need accelerations: the solved order must be 2 or more (PlanRun raises it)";
     return false;
   }

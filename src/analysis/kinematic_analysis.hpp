@@ -15,6 +15,19 @@
 
 namespace mechkin {
 
+/// The inverse dynamics reads q̈: a run that computes forces solves at least this order.
+constexpr int kForcesOrder = 2;
+
+/// The single valid range of each solver field and its message, shared by
+/// RunRequest::IsValid (what the front ends check) and AnalysisOptions::IsValid.
+bool CheckSolverFields(int order, double tolerance, int max_iterations, int predictor_order, bool sensitivities,
+                       Formulation formulation, PositionSolver solver, std::string* why);
+/// The order / tolerance message for a value as shown to the user ("5", "0.005", "'abc'").
+std::string OrderProblem(const std::string& shown);
+std::string ToleranceProblem(const std::string& shown);
+constexpr double kMinTolerance = 1e-15;  // below: under the round-off of the scaled residual
+constexpr double kMaxTolerance = 1e-3;   // above: the branch guard's steps stop being reliable
+
 // The solver's settings of one run. Front ends do not fill these: they build a
 // RunRequest (analysis/run_request.hpp) whose PlanRun decides them, the solved
 // order included (raised for forces).

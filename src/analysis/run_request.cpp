@@ -8,15 +8,6 @@
 namespace mechkin {
 namespace {
 
-// The order at which the inverse dynamics has what it reads (q̈; docs/format.md "Forces").
-constexpr int kForcesOrder = 2;
-
-std::string Shown(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
 // The names of a selection; an empty name selects nothing (`--bodies ''`: no body columns).
 std::vector<std::string> Selection(const std::optional<std::vector<std::string>>& names) {
   std::vector<std::string> out;
@@ -28,29 +19,13 @@ std::vector<std::string> Selection(const std::optional<std::vector<std::string>>
 
 }  // namespace
 
-std::string RunRequest::OrderProblem(const std::string& shown) {
-  return "order must be an integer in 0..4 (0 position, 1 velocity, 2 acceleration, 3 jerk, 4 snap), not " + shown;
-}
+std::string RunRequest::OrderProblem(const std::string& shown) { return mechkin::OrderProblem(shown); }
 
-std::string RunRequest::ToleranceProblem(const std::string& shown) {
-  return "tol must be a number in [1e-15, 1e-3] (the position tolerance relative to the mechanism size), not " +
-         shown;
-}
+std::string RunRequest::ToleranceProblem(const std::string& shown) { return mechkin::ToleranceProblem(shown); }
 
 bool RunRequest::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& message) {
-    *why = message;
-    return false;
-  };
-  if (order < 0 || order > kMaxOrder) return fail(OrderProblem(std::to_string(order)));
-  // Written so that NaN fails too.
-  if (!(tolerance >= kMinTolerance && tolerance <= kMaxTolerance)) return fail(ToleranceProblem(Shown(tolerance)));
-  if (max_iterations < 1) return fail("max_iterations must be 1 or more, not " + std::to_string(max_iterations));
-  if (predictor_order < 0 || predictor_order > 3)
-    return fail("predictor order must be an integer in 0..3, not " + std::to_string(predictor_order));
-  if (!sensitivity.empty() && (formulation != Formulation::Omega || solver != PositionSolver::Newton))
-    return fail("sensitivities use the default formulation and solver (omega, newton)");
-  return true;
+  return CheckSolverFields(order, tolerance, max_iterations, predictor_order, !sensitivity.empty(), formulation,
+                           solver, why);
 }
 
 int SolvedOrder(int shown_order, bool forces) { return forces ? std::max(shown_order, kForcesOrder) : shown_order; }

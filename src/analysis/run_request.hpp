@@ -44,8 +44,8 @@ struct RunRequest {
   int predictor_order = 3;   // Taylor predictor of the next pose (used up to the solved order)
   bool keep_step_diagnostics = true;  // every row's StepDiagnostics in the report (streaming runs: off)
 
-  static constexpr double kMinTolerance = 1e-15;  // below: under the round-off of the residual
-  static constexpr double kMaxTolerance = 1e-3;   // above: the branch guard's steps stop being reliable
+  // The ranges (kMinTolerance, kMaxTolerance, order 0..kMaxOrder) and their messages are
+  // the solver's (CheckSolverFields, analysis/kinematic_analysis.hpp): one definition.
 
   /// True when every field is in its range; otherwise false with *why the first problem
   /// ("tol must be a number in [1e-15, 1e-3] ..., not 0.005"). The front ends print *why as is.

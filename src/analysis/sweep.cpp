@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <stdexcept>
 
 #include "analysis/motion.hpp"
 #include "analysis/parallel.hpp"
@@ -65,11 +66,22 @@ std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, un
 
 namespace {
 
+// A variant's run: the outputs' columns (no outputs: the bodies'), no forces.
+RunRequest VariantRequest(const Model& model, const RunRequest& request) {
+  RunRequest r = request;
+  r.outputs.reset();
+  r.bodies.reset();
+  if (!model.outputs.empty()) r.bodies = std::vector<std::string>{};
+  r.forces = ForcesChoice::Off;
+  r.sensitivity.clear();
+  r.keep_step_diagnostics = false;
+  return r;
+}
+
 TableOptions SweepTable(const Model& model, int order) {
-  TableOptions table;
-  table.order = order;
-  table.all_bodies = model.outputs.empty();  // no outputs: the bodies' columns
-  return table;
+  RunRequest r;
+  r.order = order;
+  return PlanRun(model, VariantRequest(model, r)).table;
 }
 
 std::vector<int> SummaryColumns(const MotionLayout& layout) {
@@ -131,13 +143,11 @@ VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, 
   if (!compiled.ok()) {
     v.status = "invalid";
     v.message = compiled.errors.empty() ? "the file does not compile" : compiled.errors.front().ToString();
-    v.min.assign(SweepColumns(model, options.order).size(), std::numeric_limits<double>::quiet_NaN());
+    v.min.assign(SweepColumns(model, options.request.order).size(), std::numeric_limits<double>::quiet_NaN());
     v.max = v.min;
     return v;
   }
-  AnalysisOptions analysis = options.analysis;
-  analysis.keep_step_diagnostics = false;
-  const Motion m = RunMotion(*compiled.model, analysis, SweepTable(*compiled.model, options.order));
+  const Motion m = RunMotion(*compiled.model, VariantRequest(*compiled.model, options.request));
   v.status = m.report.limit ? "limit" : StatusOf(m.stop.kind);
   v.message = m.complete ? "" : m.stop.Summary();
   v.rows = m.rows();
@@ -153,7 +163,9 @@ SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& 
   result.shards = options.shards;
   if (!variants.empty())
     for (const auto& kv : variants.front()) result.parameters.push_back(kv.first);
-  result.columns = SweepColumns(model, options.order);
+  std::string why;
+  if (!options.request.IsValid(&why)) throw std::invalid_argument(why);
+  result.columns = SweepColumns(model, options.request.order);
   std::vector<int> mine;
   for (int i = 0; i < result.total; ++i)
     if (i % options.shards == options.shard - 1) mine.push_back(i);

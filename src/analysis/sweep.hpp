@@ -15,6 +15,7 @@
 
 #include "analysis/kinematic_analysis.hpp"
 #include "analysis/motion.hpp"
+#include "analysis/run_request.hpp"
 #include "model/loader.hpp"
 
 namespace mechkin {
@@ -34,10 +35,17 @@ std::vector<ParameterOverrides> GridVariants(const std::vector<GridAxis>& axes);
 std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, unsigned long seed, std::string* error);
 
 struct SweepOptions {
-  int order = 1;          // derivative orders summarised
+  // Every variant's run: order (derivative orders summarised, default 1), tolerance,
+  // solver. The columns are the sweep's (the outputs, or the bodies of a file without
+  // any) and no forces, whatever the request's selection and forces say.
+  RunRequest request = DefaultRequest();
   int threads = 0;        // 0: all cores
   int shard = 1, shards = 1;  // run the variants with index ≡ shard−1 (mod shards)
-  AnalysisOptions analysis;
+  static RunRequest DefaultRequest() {
+    RunRequest r;
+    r.order = 1;
+    return r;
+  }
 };
 
 struct VariantSummary {
@@ -61,7 +69,8 @@ struct SweepResult {
   std::vector<VariantSummary> variants;  // by index
 };
 
-/// Runs the shard's variants on the threads.
+/// Runs the shard's variants on the threads. Throws std::invalid_argument for an
+/// invalid options.request (RunRequest::IsValid).
 SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& variants, const SweepOptions& options);
 /// One variant's summary (what RunSweep does per variant; the Python binding's unit of work).
 VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, const SweepOptions& options);

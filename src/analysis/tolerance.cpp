@@ -10,12 +10,16 @@ namespace mechkin {
 
 namespace {
 
-TableOptions OutputTable(const Model& model, int order, std::vector<std::string> sensitivity) {
-  TableOptions table;
-  table.order = order;
-  table.all_bodies = model.outputs.empty();  // no outputs: the bodies' columns
-  table.sensitivity = std::move(sensitivity);
-  return table;
+// A run of the analysis: the outputs' columns (no outputs: the bodies'), no forces,
+// the sensitivities given.
+RunRequest OutputRequest(const Model& model, const RunRequest& request, std::vector<std::string> sensitivity) {
+  RunRequest r = request;
+  r.outputs.reset();
+  r.bodies.reset();
+  if (!model.outputs.empty()) r.bodies = std::vector<std::string>{};
+  r.forces = ForcesChoice::Off;
+  r.sensitivity = std::move(sensitivity);
+  return r;
 }
 
 // The columns analysed: every body/output column of the nominal run.
@@ -72,7 +76,7 @@ void RunSample(const Model& model, const ParameterOverrides& set, const Motion& 
     ++acc->failed;
     return;
   }
-  const Motion m = RunMotion(*variant.model, options.analysis, OutputTable(model, options.order, {}));
+  const Motion m = RunMotion(*variant.model, OutputRequest(model, options.request, {}));
   if (!m.complete || m.rows() != nominal.rows()) {
     ++acc->failed;
     return;
@@ -153,7 +157,9 @@ ToleranceReport AnalyzeTolerances(const Model& model, const ToleranceOptions& op
     rep.message = "no parameter declares a tolerance: write e.g. \"rod\": {\"value\": 120, \"tolerance\": 0.05}";
     return rep;
   }
-  const Motion nominal = RunMotion(model, options.analysis, OutputTable(model, options.order, rep.parameters));
+  const RunRequest nominal_request = OutputRequest(model, options.request, rep.parameters);
+  if (!nominal_request.IsValid(&rep.message)) return rep;
+  const Motion nominal = RunMotion(model, nominal_request);
   if (!nominal.complete) {
     rep.message = "the nominal run did not complete: " + nominal.stop.message;
     return rep;

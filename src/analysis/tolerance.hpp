@@ -18,15 +18,24 @@
 
 #include "analysis/motion.hpp"
 #include "analysis/parallel.hpp"
+#include "analysis/run_request.hpp"
 
 namespace mechkin {
 
 struct ToleranceOptions {
-  int order = 0;             // derivative orders of the outputs analysed
+  // Every run's request: order (derivative orders of the outputs analysed, default
+  // 0), tolerance, solver; the columns are the outputs' (the bodies' without any),
+  // no forces, and the sensitivities are the toleranced parameters.
+  RunRequest request = DefaultRequest();
   int monte_carlo = 0;       // samples (0: linear estimate only)
   unsigned long seed = 1;
   int threads = 0;           // 0: all cores
-  AnalysisOptions analysis;  // tolerance etc. of every run
+  static RunRequest DefaultRequest() {
+    RunRequest r;
+    r.order = 0;
+    r.keep_step_diagnostics = false;
+    return r;
+  }
 };
 
 struct ToleranceColumn {
@@ -49,7 +58,8 @@ struct ToleranceReport {
   unsigned long seed = 0;
 };
 
-/// The stack-up over the parameters that declare a tolerance.
+/// The stack-up over the parameters that declare a tolerance (an invalid
+/// options.request: ok false with IsValid's message).
 ToleranceReport AnalyzeTolerances(const Model& model, const ToleranceOptions& options);
 
 }  // namespace mechkin

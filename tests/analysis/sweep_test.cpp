@@ -46,7 +46,7 @@ TEST(Sweep, SummariesMatchTheClosedFormAndFailuresAreReported) {
   // b = 5: the coupler cannot reach (b + c < |BD|): no design pose.
   const std::vector<ParameterOverrides> variants = {{{"a", 40}, {"b", 120}}, {{"a", 40}, {"b", 5}}};
   SweepOptions options;
-  options.order = 0;
+  options.request.order = 0;
   const SweepResult r = RunSweep(model, variants, options);
   ASSERT_EQ(r.variants.size(), 2u);
   EXPECT_EQ(r.variants[0].status, "complete");

@@ -19,8 +19,8 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
   cmd->add_option("--seed", o->seed, "Seed of --samples (default 1)");
   cmd->add_option("--shard", o->shard, "i/N: run the variants with index = i-1 (mod N), for job arrays");
   cmd->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::Range(0, 4096));
-  cmd->add_option("--order", o->order, "Derivative orders summarised (default 1)")->check(OrderCheck());
-  cmd->add_option("--tol", o->tolerance, "Position tolerance of every run (default 1e-10)")->check(ToleranceCheck());
+  AddOrderOption(cmd, &o->request, "Derivative orders summarised (default 1)");
+  AddToleranceOption(cmd, &o->request, "Position tolerance of every run (default 1e-10)");
   cmd->add_option("--set", o->set, "Parameter value replacing the file's for every variant: NAME=NUMBER");
   cmd->add_flag("--merge", o->merge, "Join shard files written with --format json");
 }
@@ -97,9 +97,8 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
   if (!model) return 1;
   std::vector<ParameterOverrides> variants;
   if (!Variants(o, *model, &variants, err)) return 2;
-  options.order = o.order;
+  options.request = o.request;
   options.threads = o.threads;
-  options.analysis.tolerance = o.tolerance;
   return Write(o, RunSweep(*model, variants, options), out, err) ? 0 : 1;
 }
 

@@ -7,15 +7,17 @@
 #include <string>
 #include <vector>
 
+#include "analysis/sweep.hpp"
+
 namespace mechkin {
 
 struct SweepCommandOptions {
   std::vector<std::string> files;  // the mechanism file, or with --merge the shard files
   std::string output, format = "csv", shard;
   std::vector<std::string> grid, set;
-  int samples = 0, order = 1, threads = 0;
+  int samples = 0, threads = 0;
   unsigned long seed = 1;
-  double tolerance = 1e-10;
+  RunRequest request = SweepOptions::DefaultRequest();  // --order (default 1), --tol
   bool merge = false;
 };
 

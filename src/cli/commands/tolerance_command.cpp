@@ -16,14 +16,13 @@ void SetupToleranceCommand(CLI::App& app, ToleranceCommandOptions* o) {
   cmd->add_option("file", o->file, "Mechanism file whose parameters declare tolerances")->required();
   cmd->add_option("-o,--output", o->output, "Report file (default: stdout); written atomically");
   cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember(NamesOf<ReportFormat>()));
-  cmd->add_option("--order", o->order, "Derivative orders of the outputs analysed (default 0: positions)")
-      ->check(OrderCheck());
+  AddOrderOption(cmd, &o->request, "Derivative orders of the outputs analysed (default 0: positions)");
   cmd->add_option("--monte-carlo", o->monte_carlo, "Also sample N variants uniformly within the tolerances")
       ->check(CLI::Range(0, 100000000));
   cmd->add_option("--seed", o->seed, "Seed of the Monte-Carlo samples (default 1)");
   cmd->add_option("--threads", o->threads, "Threads for the Monte-Carlo runs (default: all cores)")
       ->check(CLI::Range(0, 4096));
-  cmd->add_option("--tol", o->tolerance, "Position tolerance of every run (default 1e-10)")->check(ToleranceCheck());
+  AddToleranceOption(cmd, &o->request, "Position tolerance of every run (default 1e-10)");
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
 }
 
@@ -33,12 +32,10 @@ int RunToleranceCommand(const ToleranceCommandOptions& o, std::ostream& out, std
   const std::optional<Model> model = LoadForCommand(o.file, err, overrides);
   if (!model) return 1;
   ToleranceOptions options;
-  options.order = o.order;
+  options.request = o.request;
   options.monte_carlo = o.monte_carlo;
   options.seed = o.seed;
   options.threads = o.threads;
-  options.analysis.tolerance = o.tolerance;
-  options.analysis.keep_step_diagnostics = false;
   const ToleranceReport report = AnalyzeTolerances(*model, options);
   std::ostringstream text;
   if (o.format == "json") text << ToleranceReportJsonText(report) << "\n";

@@ -6,13 +6,15 @@
 #include <string>
 #include <vector>
 
+#include "analysis/tolerance.hpp"
+
 namespace mechkin {
 
 struct ToleranceCommandOptions {
   std::string file, output, format = "text";
-  int order = 0, monte_carlo = 0, threads = 0;
+  int monte_carlo = 0, threads = 0;
   unsigned long seed = 1;
-  double tolerance = 1e-10;
+  RunRequest request = ToleranceOptions::DefaultRequest();  // --order (default 0), --tol
   std::vector<std::string> set;
 };
 
