@@ -82,6 +82,8 @@ case("driver-table-unsorted", "/drivers/0/function/table/2/0",
 case("driver-number-function", "/drivers/0/function", setp(["drivers", 0, "function"], 360))
 case("end-before-start", "/analysis/end", setp(["analysis", "end"], 0))
 case("zero-steps", "/analysis/steps", setp(["analysis", "steps"], 0))
+case("view-unknown-up-axis", "/view/up", setp(["view"], {"up": "w"}))
+case("view-plot-not-a-list", "/view/plots/0", setp(["view"], {"plots": ["piston.x"]}))
 case("fractional-steps", "/analysis/steps", setp(["analysis", "steps"], 2.5))
 case("unknown-length-unit", "/units/length", setp(["units", "length"], "mmm"))
 case("unknown-angle-unit", "/units/angle", setp(["units", "angle"], "degree"))

@@ -308,7 +308,8 @@ def stewart():
         "drivers": drivers,
         "analysis": {"start": 0, "end": 1, "steps": 100},
         "outputs": [{"name": "centre", "type": "point", "body": "platform", "point": [0, 0, 0.6]}],
-        "expect": {"grubler": 6, "mobility": 6, "redundant": 0, "idle": 0, "driven": "full"}})
+        "expect": {"grubler": 6, "mobility": 6, "redundant": 0, "idle": 0, "driven": "full"},
+        "view": {"up": "z"}})
     bodies = [{"name": "platform", "position": [0, 0, 0.6]}]
     joints, drv = [], []
     for k in range(6):
@@ -331,7 +332,8 @@ def stewart():
         "bodies": bodies, "joints": joints, "drivers": drv,
         "analysis": {"start": 0, "end": 1, "steps": 100},
         "outputs": [{"name": "centre", "type": "point", "body": "platform", "point": [0, 0, 0.6]}],
-        "expect": {"grubler": 12, "mobility": 12, "redundant": 0, "idle": 6, "driven": "full"}})
+        "expect": {"grubler": 12, "mobility": 12, "redundant": 0, "idle": 6, "driven": "full"},
+        "view": {"up": "z"}})
 
 
 def five_bar():

@@ -199,8 +199,12 @@ def colour_masks(img):
     return (b > r + 40) & (b > g + 10), (r > g + 60) & (r > b + 60)
 
 
-def suspension(tmp_path, gravity=None):
+def suspension(tmp_path, gravity=None, view=None):
+    # The bundled file without its "view" section unless one is given.
     doc = json.load(open(os.path.join(ROOT, "mechanisms", "double-wishbone-suspension.json")))
+    doc.pop("view", None)
+    if view is not None:
+        doc["view"] = view
     if gravity is not None:
         doc["gravity"] = gravity
     src = tmp_path / "susp.json"
@@ -214,12 +218,12 @@ def page_data(page):
     return json.loads(re.search(r"window\.MECHKIN_DATA=(.*?);</script>", text).group(1))
 
 
-@pytest.mark.parametrize("how", ["gravity", "flag"])
+@pytest.mark.parametrize("how", ["gravity", "flag", "file"])
 def test_z_up_mechanism_is_drawn_upright(cli, tmp_path, how):
     # The suspension is drawn z-up (x forward, y outboard): with gravity −z in the file,
     # or with --up z. Its upper arm (z ≈ 435 mm) is then above its lower arm (z ≈ 140 mm)
     # on the screen, and it is the top body: the top rows of the mechanism are red.
-    src = suspension(tmp_path, [0, 0, -9810] if how == "gravity" else None)
+    src = suspension(tmp_path, [0, 0, -9810] if how == "gravity" else None, {"up": "z"} if how == "file" else None)
     page = tmp_path / "z.html"
     assert view(cli, str(src), page, *(["--up", "z"] if how == "flag" else [])).returncode == 0
     assert page_data(page)["up"] == [0, 0, 1]
@@ -242,6 +246,33 @@ def test_without_gravity_or_flag_y_is_up(cli, tmp_path):
     img = pixels(browser.screenshot(page, tmp_path / "y.png", "t=0.5", size=BIG))[VIEW3D]
     blue, red = colour_masks(img)
     assert not np.nonzero(red)[0].mean() + 150 < np.nonzero(blue)[0].mean()
+
+
+def test_file_view_section_sets_up_axis_panels_and_paused(cli, tmp_path):
+    # "view": {"up", "plots", "paused"} in the file: the page uses exactly those panels,
+    # the bundled suspension's own "view" draws it z-up, paused opens still, and a
+    # column the table lacks is refused naming /view/plots (exit 1, no page).
+    import re
+    page = tmp_path / "bundled.html"
+    assert view(cli, os.path.join(ROOT, "mechanisms", "double-wishbone-suspension.json"), page).returncode == 0
+    assert page_data(page)["up"] == [0, 0, 1]
+    src = suspension(tmp_path, None, {"plots": [["toe"], ["camber", "wheel_centre.z"]], "paused": True})
+    page = tmp_path / "f.html"
+    assert view(cli, str(src), page).returncode == 0
+    data = page_data(page)
+    assert data["paused"] is True and data["up"] == [0, 1, 0]
+    attrs, dom = browser.dump_dom(page, "t=0.2", size=BIG)
+    panels = re.findall(r'<svg[^>]*class="plot".*?</svg>', dom, re.S)
+    assert [re.findall(r'data-name="([^"]+)"', p) for p in panels] == [["toe"], ["camber", "wheel_centre.z"]]
+    still = [pixels(browser.screenshot(page, tmp_path / ("s%d.png" % k), "", size=BIG, budget=b))[VIEW3D]
+             for k, b in enumerate((900, 1300))]
+    assert (np.abs(still[0] - still[1]).sum(axis=2) > 60).sum() == 0
+    assert view(cli, str(src), page, "--up", "x").returncode == 0 and page_data(page)["up"] == [1, 0, 0]
+    bad = suspension(tmp_path, None, {"plots": [["camber", "nope"]]})
+    out = tmp_path / "bad.html"
+    r = subprocess.run([cli, "view", str(bad), "-o", str(out)], capture_output=True, text=True)
+    assert r.returncode == 1 and "/view/plots: no column 'nope'" in r.stderr and "camber" in r.stderr
+    assert not out.exists()
 
 
 def test_standard_views_change_the_picture(cli, tmp_path):

@@ -284,9 +284,12 @@ void WriteMarks(const Motion& m, double stop_t, Json* j) {
   j->Raw("]");
 }
 
-// The page's up direction: against gravity when the model has it, else the option.
+// The page's up direction: the option (--up), else the file's "view", else against
+// gravity, else y.
 Vec3 UpOf(const Model& model, const SceneOptions& o) {
-  return model.gravity.norm() > 0 ? Vec3(-model.gravity.normalized()) : o.up.normalized();
+  if (o.up) return o.up->normalized();
+  if (model.view.up) return *model.view.up;
+  return model.gravity.norm() > 0 ? Vec3(-model.gravity.normalized()) : Vec3::UnitY();
 }
 
 // Distance drivers (a Stewart platform's legs): drawn as lines between their points,
@@ -341,12 +344,13 @@ std::string SceneData(const Model& model, const Motion& m, const SceneOptions& o
   j.Raw(",");
   WriteSeries(m, frames, &j);
   j.Raw(",");
-  WritePanels(o.plots.empty() ? DefaultPanels(model, m) : o.plots, &j);
+  WritePanels(!o.plots.empty() ? o.plots : !model.view.plots.empty() ? model.view.plots : DefaultPanels(model, m), &j);
   const double stop_t = m.stop.singular ? m.stop.singular->t : (m.rows() ? m.at(m.rows() - 1, 0) : 0);
   j.Raw(",");
   WriteMarks(m, stop_t, &j);
   j.Raw(","), j.Key("stop"), j.Raw("{"), j.Key("complete"), j.Raw(m.complete ? "true" : "false"), j.Raw(",");
-  j.Key("t"), j.Num(stop_t), j.Raw(","), j.Key("message"), j.Str(m.stop.Summary()), j.Raw("}}");
+  j.Key("t"), j.Num(stop_t), j.Raw(","), j.Key("message"), j.Str(m.stop.Summary()), j.Raw("},");
+  j.Key("paused"), j.Raw(model.view.paused ? "true" : "false"), j.Raw("}");
   return j.str();
 }
 
@@ -396,11 +400,24 @@ body{margin:0;font:13px sans-serif;display:grid;grid-template-columns:1fr 560px;
 
 }  // namespace
 
-bool ParsePlots(const Motion& motion, const std::string& spec, std::vector<std::vector<std::string>>* panels,
+bool CheckPlots(const Motion& motion, const std::vector<std::vector<std::string>>& panels, const std::string& where,
                 std::string* error) {
   std::vector<std::string> names;
   for (const ColumnDescriptor& d : motion.columns())
     if (Plottable(d)) names.push_back(d.name);
+  for (const auto& panel : panels)
+    for (const std::string& name : panel)
+      if (std::find(names.begin(), names.end(), name) == names.end()) {
+        std::string choices;
+        for (const auto& n : names) choices += (choices.empty() ? "" : ", ") + n;
+        *error = where + ": no column '" + name + "'; the columns are: " + choices;
+        return false;
+      }
+  return true;
+}
+
+bool ParsePlots(const Motion& motion, const std::string& spec, std::vector<std::vector<std::string>>* panels,
+                std::string* error) {
   panels->clear();
   std::stringstream groups(spec);
   for (std::string group; std::getline(groups, group, ';');) {
@@ -409,14 +426,7 @@ bool ParsePlots(const Motion& motion, const std::string& spec, std::vector<std::
     for (std::string name; std::getline(items, name, ',');) {
       name.erase(0, name.find_first_not_of(" \t"));
       name.erase(name.find_last_not_of(" \t") + 1);
-      if (name.empty()) continue;
-      if (std::find(names.begin(), names.end(), name) == names.end()) {
-        std::string choices;
-        for (const auto& n : names) choices += (choices.empty() ? "" : ", ") + n;
-        *error = "--plots: no column '" + name + "'; the columns are: " + choices;
-        return false;
-      }
-      panel.push_back(name);
+      if (!name.empty()) panel.push_back(name);
     }
     if (!panel.empty()) panels->push_back(panel);
   }
@@ -424,7 +434,7 @@ bool ParsePlots(const Motion& motion, const std::string& spec, std::vector<std::
     *error = "--plots: no column given; write names separated by ',' within a plot and ';' between plots";
     return false;
   }
-  return true;
+  return CheckPlots(motion, *panels, "--plots", error);
 }
 
 std::string DefaultThreeJsDir() {
@@ -440,6 +450,7 @@ bool WriteViewerHtml(const Model& model, const Motion& motion, const SceneOption
     *error = "three.js not found in " + dir + ": install Debian's libjs-three (apt-get install libjs-three)";
     return false;
   }
+  if (options.plots.empty() && !CheckPlots(motion, model.view.plots, "/view/plots", error)) return false;
   OutputFile file;
   if (!file.Open(path, {}, error)) return false;
   file.Write(kPageHead);

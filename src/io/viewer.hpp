@@ -3,6 +3,7 @@
 // and as a glTF 2.0 file (nodes with one keyframe animation per body).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,13 +16,20 @@ namespace mechkin {
 struct SceneOptions {
   int max_frames = 2000;     // longer motions are decimated for the page
   std::string three_js_dir;  // where three.min.js and OrbitControls.js are; empty: the default
-  Vec3 up = Vec3::UnitY();   // drawn upwards when the model has no gravity (else −gravity)
-  std::vector<std::vector<std::string>> plots;  // panels of column names; empty: the file's outputs
+  // Drawn upwards: this when given (--up), else the file's "view"."up", else −gravity,
+  // else y.
+  std::optional<Vec3> up;
+  // Panels of column names (--plots); empty: the file's "view"."plots", else its outputs.
+  std::vector<std::vector<std::string>> plots;
 };
 
 /// "a,b;c" (columns by name, ',' within a plot, ';' between plots) → panels;
 /// false with a message naming the columns for an unknown name.
 bool ParsePlots(const Motion& motion, const std::string& spec, std::vector<std::vector<std::string>>* panels,
+                std::string* error);
+/// Every name in `panels` a plottable column of `motion`; false with a message
+/// "<where>: no column 'x'; the columns are: …" otherwise.
+bool CheckPlots(const Motion& motion, const std::vector<std::vector<std::string>>& panels, const std::string& where,
                 std::string* error);
 
 /// The Motion must hold every body (TableOptions::all_bodies).

@@ -17,6 +17,7 @@ std::optional<Model> Compiler::Run() {
   for (const OutputSpec& o : spec_.outputs) Place(Section::Outputs, o.pointer), CompileOutput(o);
   CompileExpect();
   CompileGravity();
+  CompileView();
   for (const LoadSpec& l : spec_.loads) Place(Section::Loads, l.pointer), CompileLoad(l);
   if (out_.has_errors() || !spec_.valid) return std::nullopt;
   Place(Section::WholeModel, "");
@@ -246,6 +247,15 @@ void Compiler::CompileExpect() {
 void Compiler::CompileGravity() {
   out_.SetPlace(Section::Gravity);
   if (auto g = Vector(spec_.gravity, false)) model_.gravity = *g * length_;
+}
+
+// "view": the page's settings, checked by the reader; plot columns by `view`.
+void Compiler::CompileView() {
+  if (!spec_.view) return;
+  const ViewSpec& v = *spec_.view;
+  if (v.up) model_.view.up = *v.up == "x" ? Vec3::UnitX() : *v.up == "z" ? Vec3::UnitZ() : Vec3::UnitY();
+  model_.view.plots = v.plots;
+  model_.view.paused = v.paused;
 }
 
 // ---- Entry points -----------------------------------------------------------

@@ -56,6 +56,7 @@ class Compiler {
   void CompileBranch(const BranchSpec& b, Analysis* an);
   void CompileExpect();
   void CompileGravity();
+  void CompileView();
 
   // Bodies (compile_bodies.cpp).
   void CompileBody(const BodySpec& b);

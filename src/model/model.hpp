@@ -139,6 +139,13 @@ struct Expect {
   std::optional<std::string> driven;  // "full", "under", "over"
 };
 
+/// How `mechkin view` shows the model (the file's "view"; no effect on the motion).
+struct ViewSettings {
+  std::optional<Vec3> up;                        // drawn upwards (unit); nullopt: from gravity or --up
+  std::vector<std::vector<std::string>> plots;   // panels of column names; empty: the defaults
+  bool paused = false;                           // the page opens still
+};
+
 struct Model {
   std::string name, description, source;
   Units units;
@@ -152,6 +159,7 @@ struct Model {
   bool HasForces() const;
   std::optional<Analysis> analysis;
   Expect expect;
+  ViewSettings view;
   double characteristic_length = 1.0;  // m; scale for every length tolerance
   std::vector<Parameter> parameters;
   /// What the file says (shared by every variant), to compile variants with other

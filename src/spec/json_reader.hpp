@@ -74,6 +74,7 @@ void ReadUnits(JsonReader& rd, const json& doc, MechanismSpec* spec);
 void ReadAnalysis(JsonReader& rd, const json& doc, MechanismSpec* spec);
 void ReadExpect(JsonReader& rd, const json& doc, MechanismSpec* spec);
 void ReadGravity(JsonReader& rd, const json& doc, MechanismSpec* spec);
+void ReadView(JsonReader& rd, const json& doc, MechanismSpec* spec);
 void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, MechanismSpec* spec);
 void ReadJoint(JsonReader& rd, const json& j, const std::string& ptr, MechanismSpec* spec);
 void ReadDriver(JsonReader& rd, const json& d, const std::string& ptr, MechanismSpec* spec);

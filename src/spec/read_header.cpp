@@ -82,7 +82,7 @@ bool ReadHeader(JsonReader& rd, const json& doc, MechanismSpec* spec) {
   rd.diagnostics().SetPlace(Section::Header);
   if (!rd.CheckObject(doc, "",
                       {"$schema", "mechkin", "name", "description", "units", "parameters", "bodies", "joints",
-                       "drivers", "analysis", "outputs", "expect", "gravity", "loads"},
+                       "drivers", "analysis", "outputs", "expect", "gravity", "loads", "view"},
                       {"mechkin", "bodies", "joints"}, "the mechanism file"))
     return false;
   rd.String(doc, "$schema", "");  // names the JSON Schema for editors; otherwise ignored
@@ -152,6 +152,57 @@ void ReadExpect(JsonReader& rd, const json& doc, MechanismSpec* spec) {
 void ReadGravity(JsonReader& rd, const json& doc, MechanismSpec* spec) {
   rd.diagnostics().SetPlace(Section::Gravity);
   if (doc.contains("gravity")) spec->gravity = rd.Vector(doc, "gravity", "");
+}
+
+namespace {
+
+// "plots": [["camber", "toe"], ["wheel_centre.z"]]: panels of column names (checked
+// against the table's columns by `view`, which knows them).
+void ReadPlots(JsonReader& rd, const json& plots, ViewSpec* view) {
+  const std::string fix = "write a list of panels, each a list of column names: [[\"camber\", \"toe\"], [\"x\"]]";
+  if (!plots.is_array() || plots.empty()) {
+    rd.Error("/view/plots", "'plots' must be a non-empty array of panels", fix);
+    return;
+  }
+  for (size_t p = 0; p < plots.size(); ++p) {
+    const std::string ptr = "/view/plots/" + std::to_string(p);
+    if (!plots[p].is_array() || plots[p].empty()) {
+      rd.Error(ptr, "a panel must be a non-empty array of column names, not " + TypeName(plots[p]), fix);
+      continue;
+    }
+    std::vector<std::string> panel;
+    for (size_t c = 0; c < plots[p].size(); ++c) {
+      if (plots[p][c].is_string())
+        panel.push_back(plots[p][c].get<std::string>());
+      else
+        rd.Error(ptr + "/" + std::to_string(c), "a column name must be a string, not " + TypeName(plots[p][c]), fix);
+    }
+    view->plots.push_back(std::move(panel));
+  }
+}
+
+}  // namespace
+
+void ReadView(JsonReader& rd, const json& doc, MechanismSpec* spec) {
+  rd.diagnostics().SetPlace(Section::View);
+  if (!doc.contains("view")) return;
+  const json& v = doc.at("view");
+  if (!rd.CheckObject(v, "/view", {"up", "plots", "paused"}, {}, "'view'")) return;
+  ViewSpec view;
+  if (auto up = rd.String(v, "up", "/view")) {
+    if (*up == "x" || *up == "y" || *up == "z")
+      view.up = *up;
+    else
+      rd.Error("/view/up", "unknown up axis '" + Shorten(*up) + "'", "use \"x\", \"y\" or \"z\"");
+  }
+  if (v.contains("plots")) ReadPlots(rd, v.at("plots"), &view);
+  if (v.contains("paused")) {
+    if (v.at("paused").is_boolean())
+      view.paused = v.at("paused").get<bool>();
+    else
+      rd.Error("/view/paused", "'paused' must be true or false, not " + TypeName(v.at("paused")));
+  }
+  spec->view = std::move(view);
 }
 
 }  // namespace mechkin::spec_reader

@@ -33,6 +33,7 @@ SpecReadResult ReadMechanismSpec(const std::string& text, const std::string& sou
   spec_reader::ReadGravity(rd, doc, &spec);
   ReadArray(rd, doc, "loads", "load", Section::Loads,
             [&](const json& e, const std::string& p) { spec_reader::ReadLoad(rd, e, p, &spec); });
+  spec_reader::ReadView(rd, doc, &spec);
   spec.valid = !result.diagnostics.has_errors();
   result.spec = std::move(spec);
   return result;

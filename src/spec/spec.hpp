@@ -166,6 +166,13 @@ struct ExpectSpec {
   std::optional<std::string> driven;
 };
 
+/// "view": how `mechkin view` shows the file (the motion does not depend on it).
+struct ViewSpec {
+  std::optional<std::string> up;                 // "x", "y" or "z" (checked by the reader)
+  std::vector<std::vector<std::string>> plots;   // panels of column names; empty: the defaults
+  bool paused = false;                           // open still instead of playing
+};
+
 struct MechanismSpec {
   std::optional<Scalar> version;  // "mechkin"
   std::string name, description;
@@ -180,6 +187,7 @@ struct MechanismSpec {
   std::optional<ExpectSpec> expect;
   std::optional<Vector3Spec> gravity;
   std::vector<LoadSpec> loads;
+  std::optional<ViewSpec> view;
   /// False when the reader reported errors: compile then reports the values'
   /// errors too but builds no model.
   bool valid = true;

@@ -21,7 +21,7 @@ void SetupViewCommand(CLI::App& app, ViewOptions* o) {
                 "accelerations whatever --order shows)");
   cmd->add_flag("--no-forces", o->no_forces, "Kinematics only");
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
-  cmd->add_option("--up", o->up, "Axis drawn upwards when the file has no gravity (default y)")->check(CLI::IsMember({"x", "y", "z"}));
+  cmd->add_option("--up", o->up, "Axis drawn upwards (default: the file's view.up, else against gravity, else y)")->check(CLI::IsMember({"x", "y", "z"}));
   cmd->add_option("--plots", o->plots, "Plotted columns: names separated by ',' within a plot, ';' between plots");
 }
 
@@ -58,7 +58,7 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   if (motion.rows() == 0) return 1;  // nothing to show
   SceneOptions scene;
   scene.max_frames = o.max_frames;
-  scene.up = o.up == "x" ? Vec3::UnitX() : o.up == "z" ? Vec3::UnitZ() : Vec3::UnitY();
+  if (!o.up.empty()) scene.up = o.up == "x" ? Vec3::UnitX() : o.up == "z" ? Vec3::UnitZ() : Vec3::UnitY();
   if (!o.plots.empty() && !ParsePlots(motion, o.plots, &scene.plots, &why)) {
     err << "mechkin view: " << why << "\n";
     return 2;

@@ -26,7 +26,7 @@ struct ViewOptions {
     return r;
   }
   std::vector<std::string> set;  // --set NAME=NUMBER, as `run`
-  std::string up = "y";          // --up x|y|z when the file has no gravity
+  std::string up;                // --up x|y|z (empty: the file's view.up, else against gravity, else y)
   std::string plots;             // --plots "a,b;c": panels of columns
 };
 

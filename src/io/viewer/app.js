@@ -537,10 +537,10 @@
     Array.prototype.forEach.call(plots.xaxis.options, function (o, i) { if (o.textContent.split(" [")[0] === hash.get("x")) plots.xaxis.selectedIndex = i; });
     plots.draw();
   }
-  // Opens playing in a loop; #paused, or a time asked for (#t=), shows a still
+  // Opens playing in a loop; #paused, the file's "view": {"paused": true}, or a time asked for (#t=), shows a still
   // (#t=0.3&play plays from there).
   setTime(hash.has("t") ? Number(hash.get("t")) : T[0]);
-  setPlaying(hash.has("play") || (!hash.has("paused") && !hash.has("t")));
+  setPlaying(hash.has("play") || (!hash.has("paused") && !hash.has("t") && !D.paused));
   renderer.render(scene, camera);
   if (hash.has("probe")) { probe = Number(hash.get("probe")); reportProbe(probe); }
   if (hash.has("export")) {
