@@ -329,7 +329,7 @@ bool Stepper::StopAtConditionMinimum(double t, double h, const StepDiagnostics& 
   const double k2 = earlier_condition_[0], k1 = earlier_condition_[1];
   earlier_condition_[0] = k1;
   earlier_condition_[1] = diag.condition;
-  if (pending_ && pending_->first.t <= t + 1e-6 * h) return ActOnPending(h, rep);
+  if (pending_ && pending_->first.t <= t + 1e-9 * h) return ActOnPending(h, rep);
   if (pending_ || !options_.branch_guard || !(k2 > 0) || !(k1 > k2) || ws_->block_solver()) return false;
   if (!(std::max(k1, diag.condition) >= kExamineCondition) || CrossesPassage(t, h)) return false;
   const double t_zero = prev_.t + h * (1 / k1) / (1 / k2 - 1 / k1);
@@ -338,7 +338,7 @@ bool Stepper::StopAtConditionMinimum(double t, double h, const StepDiagnostics& 
   if (c.kind != SingularKind::UniquePassage && c.kind != SingularKind::Bifurcation) return false;
   if (std::abs(c.t - passage_t_) < 1e-6 * h || !(c.t > prev_.t - 2 * h && c.t < t + 2 * h)) return false;
   pending_.emplace(c, DescribeSingularPosition(ws_->system(), Classifier().active(), Classifier().pose(), c));
-  return c.t <= t + 1e-6 * h && ActOnPending(h, rep);
+  return c.t <= t + 1e-9 * h && ActOnPending(h, rep);
 }
 
 // The row passes the singular position classified before: a bifurcation stops the
