@@ -5,10 +5,12 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "analysis/assembly.hpp"
 #include "analysis/error_bounds.hpp"
 #include "analysis/row_selection.hpp"
+#include "analysis/singular_points.hpp"
 
 namespace mechkin {
 
@@ -104,6 +106,9 @@ constexpr double kMaxPolishCondition = 1e4;
 constexpr double kReselectGain = 4;  // ... and switch when that set is this much better
 constexpr double kWellConditionedRows = 1e4;  // 1-norm condition a new set must stay below
 constexpr int kMaxReselectColumns = 1200;  // 200 bodies: the dense QR of the selection
+// Rows whose condition estimate reaches this, with 1/κ heading for zero, have the
+// step before them examined for a singular position (bundled mechanisms stay below 40).
+constexpr double kExamineCondition = 50;
 
 // Condition number (1-norm estimate) of the scaled Jacobian's rows `rows`: compares
 // two independent sets of the same mechanism.
@@ -138,6 +143,13 @@ class Stepper {
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
   bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
   bool StopAtLimitOrSingularity(Outcome out, double t, double bad_t, AnalysisReport* rep);
+  enum class Verdict { Undecided, Passed, Stop };
+  Verdict ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag, AnalysisReport* rep);
+  bool StopAtConditionMinimum(double t, double h, const StepDiagnostics& diag, AnalysisReport* rep);
+  bool ActOnPending(double h, AnalysisReport* rep);
+  SingularityClassifier& Classifier();
+  void StopAtBifurcation(const SingularClassification& c, AnalysisReport* rep);
+  bool CrossesPassage(double t, double dt) const { return dt > 0 && passage_t_ > t - dt * (1 + 1e-12) && passage_t_ <= t; }
 
   std::unique_ptr<KinematicsWorkspace> ws_;
   const Model& model_;
@@ -153,6 +165,15 @@ class Stepper {
   double reselect_above_ = kReselectCondition;  // condition that triggers the next search
   bool have_sign_ = false;
   Eigen::VectorXd phi_;
+  // Singular positions the sign of det Φ_q cannot see (docs/singularities.md): the
+  // classifier (own workspace), the last unique passage and the conditions of the
+  // two rows before this one.
+  std::unique_ptr<SingularityClassifier> classifier_;
+  double passage_t_ = -std::numeric_limits<double>::infinity();
+  double earlier_condition_[2] = {0, 0};
+  std::optional<std::pair<SingularClassification, SingularPosition>> pending_;  // located ahead of the row
+  double step_sign_ = 0;
+  bool step_have_sign_ = false;
   std::unique_ptr<ForceSolver> forces_;
   ForceResults force_results_;
   std::unique_ptr<SensitivitySolver> sensitivity_;
@@ -180,7 +201,7 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
   if (!last_.success) return Outcome::Failed;
   const double sign = ws_->factorization().Sign();
   if (options_.branch_guard) {
-    if (have_sign_ && sign != prev_sign_) return Outcome::Suspect;
+    if (have_sign_ && sign != prev_sign_ && !CrossesPassage(t, dt)) return Outcome::Suspect;
     if (dt > 0 && PoseDistance(predicted_, s_, model_.characteristic_length) > 0.1) return Outcome::Suspect;
   }
   SolveDerivatives(*ws_, options_.order, &s_);
@@ -298,6 +319,81 @@ bool Stepper::StopAtLimitOrSingularity(Outcome out, double t, double bad_t, Anal
   return true;
 }
 
+SingularityClassifier& Stepper::Classifier() {
+  if (!classifier_ || classifier_->active() != ws_->active())
+    classifier_ = std::make_unique<SingularityClassifier>(ws_->system(), ws_->active());
+  return *classifier_;
+}
+
+void Stepper::StopAtBifurcation(const SingularClassification& c, AnalysisReport* rep) {
+  const SingularPosition sp = DescribeSingularPosition(ws_->system(), Classifier().active(), Classifier().pose(), c);
+  rep->stop = StopKind::SingularPosition;
+  rep->message = SingularityMessage(model_, sp);
+  rep->singular = sp;
+}
+
+// A step still suspect at 1/1024 of the step: where the smallest singular values of
+// Φ_q vanish between good_ and bad_t, classify the position (docs/singularities.md).
+// A unique passage is crossed — the step redone with the sign test waived across it
+// — and noted; a bifurcation stops the run; the rest is StopAtLimitOrSingularity's.
+Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag,
+                                          AnalysisReport* rep) {
+  if (!options_.branch_guard || ws_->block_solver() || !(*bad_t > good_.t)) return Verdict::Undecided;
+  const SingularClassification c = Classifier().Classify(good_, *bad_t, h);
+  if (!(c.t > good_.t - h && c.t < *bad_t + h)) return Verdict::Undecided;
+  if (c.kind == SingularKind::Bifurcation) {
+    StopAtBifurcation(c, rep);
+    return Verdict::Stop;
+  }
+  if (c.kind != SingularKind::UniquePassage || std::abs(c.t - passage_t_) < 1e-6 * h) return Verdict::Undecided;
+  if (pending_ && std::abs(pending_->first.t - c.t) < 1e-6 * h) pending_.reset();  // the same one, noted here
+  passage_t_ = c.t;
+  rep->notes.push_back(PassageNote(model_, c));
+  s_ = prev_;
+  prev_sign_ = step_sign_;
+  have_sign_ = step_have_sign_;
+  *out = Attempt(t, h, false);
+  if (*out != Outcome::Ok) *out = Refine(t, diag, bad_t);
+  return Verdict::Passed;
+}
+
+// A singular position of even multiplicity leaves the sign of det Φ_q as it was:
+// the rows' condition estimate shows it. When 1/κ, extrapolated from the two rows
+// before, reaches zero by the middle of the next step and κ is high, the step
+// (prev_, t] is classified before its row is delivered (docs/singularities.md §1).
+// A position located ahead is kept until the row that passes it.
+bool Stepper::StopAtConditionMinimum(double t, double h, const StepDiagnostics& diag, AnalysisReport* rep) {
+  const double k2 = earlier_condition_[0], k1 = earlier_condition_[1];
+  earlier_condition_[0] = k1;
+  earlier_condition_[1] = diag.condition;
+  if (pending_ && pending_->first.t <= t + 1e-9 * h) return ActOnPending(h, rep);
+  if (pending_ || !options_.branch_guard || !(k2 > 0) || !(k1 > k2) || ws_->block_solver()) return false;
+  if (!(std::max(k1, diag.condition) >= kExamineCondition) || CrossesPassage(t, h)) return false;
+  const double t_zero = prev_.t + h * (1 / k1) / (1 / k2 - 1 / k1);
+  if (!(t_zero < t + 0.5 * h)) return false;
+  const SingularClassification c = Classifier().Classify(prev_, t, h);
+  if (c.kind != SingularKind::UniquePassage && c.kind != SingularKind::Bifurcation) return false;
+  if (std::abs(c.t - passage_t_) < 1e-6 * h || !(c.t > prev_.t - 2 * h && c.t < t + 2 * h)) return false;
+  pending_.emplace(c, DescribeSingularPosition(ws_->system(), Classifier().active(), Classifier().pose(), c));
+  return c.t <= t + 1e-9 * h && ActOnPending(h, rep);
+}
+
+// The row passes the singular position classified before: a bifurcation stops the
+// run (this row is past it), a unique passage is noted.
+bool Stepper::ActOnPending(double h, AnalysisReport* rep) {
+  const auto [c, sp] = *pending_;
+  pending_.reset();
+  if (c.kind == SingularKind::Bifurcation) {
+    rep->stop = StopKind::SingularPosition;
+    rep->message = SingularityMessage(model_, sp);
+    rep->singular = sp;
+    return true;
+  }
+  if (std::abs(c.t - passage_t_) >= 1e-6 * h) rep->notes.push_back(PassageNote(model_, c));
+  passage_t_ = c.t;
+  return false;
+}
+
 void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
   const Analysis& an = *model_.analysis;
   const double h = (an.end - an.start) / an.steps;
@@ -306,6 +402,8 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
     const auto t0 = Clock::now();
     StepDiagnostics diag;
     diag.t = t;
+    step_sign_ = prev_sign_;
+    step_have_sign_ = have_sign_;
     Outcome out = Attempt(t, step > 0 ? h : 0, step > 0);
     diag.iterations = last_.iterations;
     double bad_t = t;
@@ -317,6 +415,7 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       out = Attempt(t, h, false);
       if (out != Outcome::Ok) out = Refine(t, &diag, &bad_t);
     }
+    if (out == Outcome::Suspect && step > 0 && ClassifySuspect(t, h, &bad_t, &out, &diag, rep) == Verdict::Stop) return;
     if (out != Outcome::Ok && step > 0 && StopAtLimitOrSingularity(out, t, bad_t, rep)) return;
     if (out != Outcome::Ok) {
       rep->stop = StopKind::SolveFailed;
@@ -325,6 +424,7 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
     }
     FinishDiagnostics(&diag);
     ReselectAndResolve(&diag, rep);
+    if (StopAtConditionMinimum(t, h, diag, rep)) return;
     if (forces_) {
       forces_->Solve(*ws_, s_, &force_results_);
       diag.forces = &force_results_;

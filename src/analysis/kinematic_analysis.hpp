@@ -86,6 +86,7 @@ struct AnalysisReport {
   std::string message;                    // failure explanation (empty on success)
   std::vector<std::string> set_aside;     // redundant equations, by name (at the start)
   std::vector<Reselection> reselections;  // later changes of that set
+  std::vector<std::string> notes;         // singular positions the run passed (a unique passage), one line each
   std::vector<std::string> indeterminate_reactions;  // with forces and redundant equations
   std::vector<StepDiagnostics> steps;     // every row's, when options.keep_step_diagnostics
   int rows = 0;                           // rows delivered to the callback

@@ -172,6 +172,48 @@ std::string LimitMessage(const Model& model, const LimitOfMotion& lim, int rows_
   return o.str();
 }
 
+SingularPosition DescribeSingularPosition(const ConstraintSystem& sys, const std::vector<int>& rows,
+                                          const SystemState& at, const SingularClassification& c) {
+  SingularPosition sp;
+  sp.t = c.t;
+  sp.driver_values = c.driver_values;
+  sp.corank = c.corank;
+  sp.branches = c.branches;
+  sp.branches_exact = c.branches_exact;
+  if (6 * sys.num_bodies() <= kDenseLimit) {
+    sp.joint_mobility = JointMobility(sys, at);
+    sp.involved = InvolvedEquations(sys, at, rows);
+  }
+  return sp;
+}
+
+namespace {
+
+// ", driver `crank` = 90 deg" for every driver, in the file's units.
+std::string DriverValues(const Model& model, const std::vector<double>& values) {
+  std::ostringstream o;
+  o.precision(12);
+  for (size_t d = 0; d < model.drivers.size() && d < values.size(); ++d) {
+    const bool angle = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation;
+    o << ", driver `" << model.drivers[d].name << "` = "
+      << values[d] / (angle ? model.units.angle_to_si : model.units.length_to_si) << " "
+      << (angle ? model.units.angle_name : model.units.length_name);
+  }
+  return o.str();
+}
+
+}  // namespace
+
+std::string PassageNote(const Model& model, const SingularClassification& c) {
+  std::ostringstream o;
+  o.precision(12);
+  o << "unique passage through a singular position at t = " << c.t << " s" << DriverValues(model, c.driver_values)
+    << ": Φ_q loses rank " << c.corank
+    << " there but only the run's branch crosses it, so the prescribed motion stays determined and the run goes "
+       "on (the rows next to it carry larger error bounds)";
+  return o.str();
+}
+
 std::string SingularityMessage(const Model& model, const SingularPosition& sp) {
   std::ostringstream o;
   o.precision(12);
@@ -184,6 +226,9 @@ std::string SingularityMessage(const Model& model, const SingularPosition& sp) {
   }
   o << "\n  instantaneous mobility of the joints there: " << sp.joint_mobility
     << " (a dead centre, toggle or change point where branches meet)";
+  if (sp.branches > 1)
+    o << "\n  branches crossing there: " << (sp.branches_exact ? "" : "at least ") << sp.branches << " (Φ_q loses rank " << sp.corank
+      << "; the prescribed motion continues on each of them)";
   if (!sp.involved.empty()) {
     o << "\n  equations that become dependent: ";
     for (size_t k = 0; k < sp.involved.size(); ++k) o << (k ? ", `" : "`") << sp.involved[k] << "`";

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/singular_points.hpp"
 #include "kinematics/workspace.hpp"
 
 namespace mechkin {
@@ -15,7 +16,16 @@ struct SingularPosition {
   std::vector<double> driver_values;    // SI, at t
   int joint_mobility = 0;               // 6n − rank of the joints' Jacobian there
   std::vector<std::string> involved;    // equations of the vanishing direction, by name
+  int corank = 0;    // singular values of the driven Φ_q vanishing there (0: not classified)
+  int branches = 0;  // branches crossing there (docs/singularities.md §3; 0: not classified)
+  bool branches_exact = true;  // false: at least `branches`
 };
+/// The singular position a classification located (pose at c.t): driver values,
+/// instantaneous mobility, the equations involved, corank and branches.
+SingularPosition DescribeSingularPosition(const ConstraintSystem& sys, const std::vector<int>& rows,
+                                          const SystemState& at, const SingularClassification& c);
+/// "unique passage through a singular position at t = … s, driver `crank` = … deg: …".
+std::string PassageNote(const Model& model, const SingularClassification& c);
 
 /// Bisection in time for the root of det Φ_q between t_lo (sign_lo, state `base`
 /// accepted at t_lo) and t_hi, each probe a tight Newton solve from the Taylor

@@ -1,0 +1,64 @@
+// Singular positions found and classified independently of the sign of det Φ_q
+// (docs/singularities.md): the smallest singular values of the driven, dimensionless
+// Φ_q are followed along the run's branch, their common zero is located between two
+// times, and the position is classified from the null spaces and the second-order
+// terms — a fold (limit of motion), a bifurcation (branches cross) or a unique
+// passage (the prescribed motion stays determined and the run goes on).
+#pragma once
+
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "kinematics/workspace.hpp"
+
+namespace mechkin {
+
+enum class SingularKind {
+  None,           // no zero of the singular values between the times (a near miss)
+  Fold,           // Φ_t leaves the range of Φ_q: the drivers cannot go on (limit of motion)
+  Bifurcation,    // two or more branches cross: the prescribed motion does not say which
+  UniquePassage,  // the branch is the only one crossing: the motion stays determined
+  Undetermined,   // could not be located or classified (the caller keeps its old rules)
+};
+
+struct SingularClassification {
+  SingularKind kind = SingularKind::Undetermined;
+  double t = 0;          // the zero of the vanishing singular values
+  int corank = 0;        // how many vanish there
+  int branches = 0;      // real tangent directions crossing t (docs/singularities.md §3)
+  bool branches_exact = true;  // false: a multiple root or a lost path, `branches` is a lower bound
+  std::vector<double> driver_values;  // SI, at t
+};
+
+/// Owns a workspace of its own so that the run's factorization and state are left
+/// untouched (a classification never changes the table). Dense: for models up to
+/// 200 bodies; larger ones get Undetermined.
+class SingularityClassifier {
+ public:
+  SingularityClassifier(const ConstraintSystem& sys, const std::vector<int>& active);
+  /// Looks for a zero of the smallest singular values between ta (`base`, solved on
+  /// the run's branch) and tb, probing at most a fraction of `step` beyond.
+  SingularClassification Classify(const SystemState& base, double tb, double step);
+  /// The pose at the located t (after Classify returned Fold, Bifurcation or UniquePassage).
+  const SystemState& pose() const { return pose_; }
+  const std::vector<int>& active() const { return ws_.active(); }
+
+ private:
+  struct Sample {
+    SystemState s;
+    Eigen::VectorXd sigma;  // singular values of the scaled Φ_q, ascending
+  };
+  bool Probe(double t, const Sample** out);
+  double Locate(double ta, double tb, double step, int* corank);
+  double FitZero(double center, double delta, int corank, bool* ok);
+  int CountVanishing(double center, double delta, bool* ok);
+  SingularKind ClassifyAt(double t, int corank, int* branches, bool* exact);
+  Eigen::VectorXd SingularValues(const SystemState& s) const;
+
+  KinematicsWorkspace ws_;
+  std::deque<Sample> samples_;  // a deque: pointers to samples stay valid as it grows
+  SystemState pose_;
+};
+
+}  // namespace mechkin
