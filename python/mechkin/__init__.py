@@ -271,7 +271,7 @@ class Motion:
     Fields: model, values (read-only rows × columns numpy view of the C++ buffer),
     columns ([{name, unit, quantity, subject, component, order}]: what each column
     is), names (the column names, as in the CLI's table without units), t (time, s),
-    complete, stop (RunStop), set_aside, reselections, indeterminate_reactions,
+    complete, stop (RunStop), set_aside, reselections, notes, indeterminate_reactions,
     diagnostics. Units: the file's (run(si=True): SI), stated per column by
     units() and not repeated in the names.
 
@@ -291,6 +291,8 @@ class Motion:
     complete = property(lambda self: self._report["complete"], doc="the run reached its last row")
     stop = property(lambda self: RunStop(self._report), doc="RunStop: why the run ended early (falsy when complete)")
     set_aside = property(lambda self: list(self._report["set_aside"]), doc="redundant equations set aside")
+    notes = property(lambda self: list(self._report.get("notes", [])),
+                     doc="singular positions the run passed uniquely (went on), one line each; as `run` prints")
     reselections = property(lambda self: list(self._report.get("reselections", [])),
                             doc="[(t, equations set aside from t on)]: redundancy that follows the motion")
     names = property(lambda self: [c["name"] for c in self.columns], doc="column names (units in units())")

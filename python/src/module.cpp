@@ -251,6 +251,7 @@ py::dict Report(const PyMotion& pm) {
   for (const auto& r : m.report.reselections) reselections.append(py::make_tuple(r.t, r.set_aside));
   d["reselections"] = reselections;
   d["set_aside"] = m.report.set_aside;
+  d["notes"] = m.report.notes;  // singular positions passed uniquely, one line each
   d["indeterminate_reactions"] = m.report.indeterminate_reactions;
   d["assembly_iterations"] = m.report.assembly_iterations;
   d["blocks"] = m.report.blocks;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -22,7 +23,7 @@ TEST(SingularRun, CrankEqualsRodStopsAtTheChangePointAtEveryOrder) {
   for (int order = 0; order <= 4; ++order) {
     RunOptions o;
     o.file = path;
-    o.order = order;
+    o.request.order = order;
     std::ostringstream out, err;
     EXPECT_EQ(RunRun(o, out, err), 1) << order;
     EXPECT_NE(err.str().find("singular position at t = 0.25"), std::string::npos) << order << err.str();
@@ -30,6 +31,42 @@ TEST(SingularRun, CrankEqualsRodStopsAtTheChangePointAtEveryOrder) {
     EXPECT_EQ(text.rfind("# PARTIAL TABLE: singular position at t = 0.25", 0), 0u) << order;
     EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1 + 1 + 25) << order;  // note, header, t = 0 … 0.24
   }
+}
+
+// The N-four-bar (IFToMM A02) with N = 2 windows, driven from 80° past the
+// singular position at −90° (unique passage): the run completes and says so on
+// stderr, naming the time (the crank reaches −90° at t = 10/20 s).
+TEST(SingularRun, UniquePassageIsNotedOnStderr) {
+  nlohmann::json j = {{"mechkin", 1}, {"name", "N-four-bar"}, {"units", {{"length", "m"}, {"angle", "deg"}}}};
+  const double th = -80 * M_PI / 180, ex = -std::sin(th), ey = std::cos(th);
+  auto point = [](double x, double y) { return nlohmann::json::array({x, y, 0.0}); };
+  auto rocker = [](int i) { return i == 0 ? std::string("crank") : "rocker" + std::to_string(i); };
+  for (int i = 0; i <= 2; ++i) {
+    j["bodies"].push_back({{"name", rocker(i)}, {"position", point(i, 0)}});
+    j["joints"].push_back({{"name", "pivot" + std::to_string(i)}, {"type", "revolute"}, {"body1", "ground"},
+                           {"body2", rocker(i)}, {"origin", point(i, 0)}, {"axis", {0, 0, 1}}});
+  }
+  for (int i = 1; i <= 2; ++i) {
+    const std::string c = "coupler" + std::to_string(i);
+    j["bodies"].push_back({{"name", c}, {"position", point(i - 1 + ex, ey)}});
+    j["joints"].push_back({{"name", "left" + std::to_string(i)}, {"type", "revolute"}, {"body1", rocker(i - 1)},
+                           {"body2", c}, {"origin", point(i - 1 + ex, ey)}, {"axis", {0, 0, 1}}});
+    j["joints"].push_back({{"name", "right" + std::to_string(i)}, {"type", "revolute"}, {"body1", c},
+                           {"body2", rocker(i)}, {"origin", point(i + ex, ey)}, {"axis", {0, 0, 1}}});
+  }
+  j["drivers"] = {{{"name", "crank"}, {"type", "rotation"}, {"joint", "pivot0"}, {"function", "-20*t"}}};
+  j["analysis"] = {{"start", 0}, {"end", 1}, {"steps", 37}};
+  const std::string path = ::testing::TempDir() + "/n-four-bar-2.json";
+  std::ofstream(path) << j.dump();
+  RunOptions o;
+  o.file = path;
+  std::ostringstream out, err;
+  EXPECT_EQ(RunRun(o, out, err), 0) << err.str();
+  const std::string e = err.str();
+  EXPECT_NE(e.find("mechkin run: note: "), std::string::npos) << e;
+  EXPECT_NE(e.find("unique"), std::string::npos) << e;
+  const std::string table = out.str();
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 1 + 38);  // header and every row
 }
 
 }  // namespace

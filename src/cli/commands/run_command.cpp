@@ -224,6 +224,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
     for (const auto& r : rep.indeterminate_reactions) err << "    " << r << "\n";
   }
   watch.Report(err);
+  for (const std::string& passed : rep.notes) err << "mechkin run: note: " << passed << "\n";
   if (!rep.complete && rep.stop != StopKind::Interrupted) err << "mechkin run: " << o.file << ": " << rep.message << "\n";
   if (o.stats && !steps.empty()) PrintStats(rep, steps, err);
   if (rep.rows == 0) return 1;  // refused or failed before the first row: no table at all
