@@ -10,6 +10,8 @@ std::optional<Model> Compiler::Run() {
   CompileHeader();
   CompileParameters();
   CompileUnits();
+  out_.SetPlace(Section::Ground);
+  CompileMarkers(kGround, spec_.ground_markers);
   for (const BodySpec& b : spec_.bodies) Place(Section::Bodies, b.pointer), CompileBody(b);
   for (const JointSpec& j : spec_.joints) Place(Section::Joints, j.pointer), CompileJoint(j);
   for (const DriverSpec& d : spec_.drivers) Place(Section::Drivers, d.pointer), CompileDriver(d);

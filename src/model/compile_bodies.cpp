@@ -45,6 +45,7 @@ void Compiler::CompileBody(const BodySpec& b) {
   }
   body_index_[body.name] = static_cast<BodyIndex>(model_.bodies.size());
   model_.bodies.push_back(body);
+  CompileMarkers(body_index_[body.name], b.markers);
 }
 
 // Orientation forms (format-v1 "orientation"); angles in the file's unit.

@@ -37,6 +37,7 @@ void Compiler::CompileJoint(const JointSpec& j) {
     ok = false;
   }
   if (!type) return;
+  if (j.marker1 || j.marker2) return CompileMarkerJoint(j, *type, ok ? &*name : nullptr, b1, b2);
   CompileJointGeometry(j, *type, ok ? &*name : nullptr, b1 ? *b1 : kGround, b2 ? *b2 : kGround);
 }
 
@@ -73,7 +74,7 @@ void Compiler::CompileJointGeometry(const JointSpec& j, JointType type, const st
       ok = false;
     }
   }
-  if (type == JointType::Distance && p1 && p2) ok = CompileDistanceLength(j, *p1, *p2, ok, &joint);
+  if (type == JointType::Distance && p1 && p2) ok = CompileDistanceLength(j, *p1, *p2, ok, "/point2", &joint);
   if (!ok) return;
   joint.body1 = body1;
   joint.body2 = body2;
@@ -97,7 +98,8 @@ bool Compiler::CompileScrewPitch(const JointSpec& j, Joint* joint) {
 }
 
 // A distance link's length: "length", or the design distance of its two points.
-bool Compiler::CompileDistanceLength(const JointSpec& j, const Vec3& p1, const Vec3& p2, bool ok, Joint* joint) {
+bool Compiler::CompileDistanceLength(const JointSpec& j, const Vec3& p1, const Vec3& p2, bool ok,
+                                     const char* point2_key, Joint* joint) {
   const std::string& ptr = j.pointer;
   double len = (p2 - p1).norm();
   if (j.length) {
@@ -115,7 +117,7 @@ bool Compiler::CompileDistanceLength(const JointSpec& j, const Vec3& p1, const V
     }
   }
   if (ok && !(len > 0)) {
-    Error(ptr + "/point2", "distance joint points coincide at the design pose and no length is given",
+    Error(ptr + point2_key, "distance joint points coincide at the design pose and no length is given",
           "a distance link of zero length is singular; use a spherical joint");
     ok = false;
   }

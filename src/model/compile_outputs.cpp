@@ -81,10 +81,17 @@ bool Compiler::CompileOutputGeometry(const OutputSpec& o, Output* out) {
   if (type == "point") {
     out->kind = OutputKind::Point;
     auto b = BodyRef(o.body, "body", ptr);
-    auto p = LengthVector(o.point);
-    if (!b || !p) return false;
-    out->body1 = *b;
-    out->point1 = LocalPoint(*b, *p);
+    if (o.marker) {  // a marker's point, already in body coordinates
+      const auto m = b ? Marker(*b, o.marker, ptr + "/marker") : std::nullopt;
+      if (!m) return false;
+      out->body1 = *b;
+      out->point1 = m->origin;
+    } else {
+      auto p = LengthVector(o.point);
+      if (!b || !p) return false;
+      out->body1 = *b;
+      out->point1 = LocalPoint(*b, *p);
+    }
     if (o.frame) {
       auto f = BodyRef(o.frame, "frame", ptr);
       if (!f) return false;

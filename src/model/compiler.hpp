@@ -69,12 +69,19 @@ class Compiler {
   bool CheckInertiaTensor(const Mat3& J, const std::string& ptr);
   std::optional<Shape> CompileShape(const ShapeSpec& o);
 
+  // Markers (compile_markers.cpp).
+  void CompileMarkers(BodyIndex body, const std::vector<MarkerSpec>& markers);
+  std::optional<JointFrame> Marker(BodyIndex body, const std::optional<std::string>& name, const std::string& ptr);
+  void CompileMarkerJoint(const JointSpec& j, JointType type, const std::string* name, std::optional<BodyIndex> body1,
+                          std::optional<BodyIndex> body2);
+
   // Joints and drivers (compile_joints.cpp).
   void CompileJoint(const JointSpec& j);
   void CompileJointGeometry(const JointSpec& j, JointType type, const std::string* name, BodyIndex body1,
                             BodyIndex body2);
   bool CompileScrewPitch(const JointSpec& j, Joint* joint);
-  bool CompileDistanceLength(const JointSpec& j, const Vec3& p1, const Vec3& p2, bool ok, Joint* joint);
+  bool CompileDistanceLength(const JointSpec& j, const Vec3& p1, const Vec3& p2, bool ok, const char* point2_key,
+                             Joint* joint);
   void AddJoint(const std::string& name, const std::optional<Vec3>& origin, const std::optional<Vec3>& axis,
                 const std::optional<Vec3>& axis1, const std::optional<Vec3>& axis2,
                 const std::optional<Vec3>& normal, const std::optional<Vec3>& p1, const std::optional<Vec3>& p2,
@@ -140,6 +147,7 @@ class Compiler {
   ExpressionSymbols symbols_;
   std::set<std::string> failed_parameters_;
   std::map<std::string, BodyIndex> body_index_;
+  std::map<BodyIndex, std::map<std::string, std::optional<JointFrame>>> markers_;  // nullopt: the marker failed
   std::map<std::string, int> joint_index_;
   std::set<std::string> driver_names_, output_names_;
   std::vector<std::string> driver_pointers_;  // per model driver, its place in the file

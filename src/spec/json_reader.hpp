@@ -79,6 +79,8 @@ void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, MechanismSp
 void ReadJoint(JsonReader& rd, const json& j, const std::string& ptr, MechanismSpec* spec);
 void ReadDriver(JsonReader& rd, const json& d, const std::string& ptr, MechanismSpec* spec);
 void ReadOutput(JsonReader& rd, const json& o, const std::string& ptr, MechanismSpec* spec);
+void ReadGround(JsonReader& rd, const json& doc, MechanismSpec* spec);
+std::vector<MarkerSpec> ReadMarkers(JsonReader& rd, const json& markers, const std::string& ptr);
 void ReadLoad(JsonReader& rd, const json& o, const std::string& ptr, MechanismSpec* spec);
 /// A driver function: an expression string or {"table": [[t, v], ...]} (Invalid: reported).
 FunctionSpec ReadFunction(JsonReader& rd, const json& f, const std::string& ptr);

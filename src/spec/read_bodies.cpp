@@ -111,7 +111,7 @@ std::optional<ShapeSpec> ReadShape(JsonReader& rd, const json& o, const std::str
 }  // namespace
 
 void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, MechanismSpec* spec) {
-  if (!rd.CheckObject(b, ptr, {"name", "description", "position", "orientation", "inertia", "shape"},
+  if (!rd.CheckObject(b, ptr, {"name", "description", "position", "orientation", "inertia", "shape", "markers"},
                       {"name", "position"}, "a body"))
     return;
   BodySpec body;
@@ -123,6 +123,7 @@ void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, MechanismSp
     body.shape = ReadShape(rd, b.at("shape"), ptr + "/shape");
     if (!body.shape) body.shape = ShapeSpec{}, body.shape->ok = false, body.shape->pointer = ptr + "/shape";
   }
+  if (b.contains("markers")) body.markers = ReadMarkers(rd, b.at("markers"), ptr + "/markers");
   if (b.contains("inertia")) body.inertia = ReadInertia(rd, b.at("inertia"), ptr + "/inertia");
   spec->bodies.push_back(std::move(body));
 }

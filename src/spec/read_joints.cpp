@@ -46,6 +46,15 @@ const JointKeys* FindJointType(JsonReader& rd, const std::optional<std::string>&
   return nullptr;
 }
 
+// A joint on two markers ("marker1" of body1, "marker2" of body2): the markers give
+// the origin and axes; a screw keeps its pitch, a distance link its optional length.
+void MarkerJointKeys(const JointKeys& info, std::vector<std::string>* allowed, std::vector<std::string>* required) {
+  allowed->insert(allowed->end(), {"marker1", "marker2"});
+  required->insert(required->end(), {"marker1", "marker2"});
+  if (std::string(info.name) == "screw") allowed->push_back("pitch"), required->push_back("pitch");
+  if (std::string(info.name) == "distance") allowed->push_back("length");
+}
+
 // The keys a driver of `type` takes besides name, description, type, function.
 void DriverKeys(JsonReader& rd, const std::optional<std::string>& type, bool by_body, const std::string& ptr,
                 std::vector<std::string>* allowed, std::vector<std::string>* required) {
@@ -90,11 +99,17 @@ void ReadJoint(JsonReader& rd, const json& jj, const std::string& ptr, Mechanism
   const JointKeys* info = FindJointType(rd, type, ptr);
   std::vector<std::string> allowed = {"name", "description", "type", "body1", "body2"};
   std::vector<std::string> required = {"name", "type", "body1", "body2"};
-  for (const auto& t : JointTypes()) {
-    if (info && info != &t) continue;
-    allowed.insert(allowed.end(), t.geometry.begin(), t.geometry.end());
-    allowed.insert(allowed.end(), t.optional.begin(), t.optional.end());
-    if (info) required.insert(required.end(), t.geometry.begin(), t.geometry.end());
+  const bool by_markers = jj.contains("marker1") || jj.contains("marker2");
+  if (info && by_markers) {
+    MarkerJointKeys(*info, &allowed, &required);
+  } else {
+    for (const auto& t : JointTypes()) {
+      if (info && info != &t) continue;
+      allowed.insert(allowed.end(), t.geometry.begin(), t.geometry.end());
+      allowed.insert(allowed.end(), t.optional.begin(), t.optional.end());
+      if (info) required.insert(required.end(), t.geometry.begin(), t.geometry.end());
+    }
+    if (!info) allowed.insert(allowed.end(), {"marker1", "marker2"});
   }
   rd.CheckObject(jj, ptr, allowed, required, info ? std::string("a ") + info->name + " joint" : "a joint");
   joint.name = rd.Name(jj, ptr, "joint");
@@ -110,7 +125,9 @@ void ReadJoint(JsonReader& rd, const json& jj, const std::string& ptr, Mechanism
   joint.point2 = rd.Vector(jj, "point2", ptr);
   joint.pitch = rd.Number(jj, "pitch", ptr);
   joint.length = rd.Number(jj, "length", ptr);
-  if (info)
+  joint.marker1 = rd.String(jj, "marker1", ptr);
+  joint.marker2 = rd.String(jj, "marker2", ptr);
+  if (info && !by_markers)
     joint.geometry_complete = std::all_of(info->geometry.begin(), info->geometry.end(),
                                           [&](const std::string& key) { return jj.contains(key); });
   spec->joints.push_back(std::move(joint));

@@ -19,7 +19,7 @@ bool OutputKeys(JsonReader& rd, const std::optional<std::string>& type, const st
     required->insert(required->end(), needed.begin(), needed.end());
     return true;
   };
-  if (type && *type == "point") return add({"body", "point", "frame"}, {"body", "point"});
+  if (type && *type == "point") return add({"body", "point", "frame", "marker"}, {"body"});
   if (type && *type == "velocity_ratio") return add({"output", "input"}, {"output", "input"});
   if (type && *type == "orientation") return add({"body", "relative_to", "sequence"}, {"body", "sequence"});
   if (type && *type == "joint") return add({"joint", "sequence"}, {"joint"});
@@ -146,13 +146,20 @@ void ReadOutput(JsonReader& rd, const json& o, const std::string& ptr, Mechanism
   out.type = rd.String(o, "type", ptr);
   std::vector<std::string> allowed = {"name", "description", "type"}, required = {"name", "type"};
   const bool known = OutputKeys(rd, out.type, ptr, &allowed, &required);
+  if (known && *out.type == "point") {
+    if (o.contains("point") && o.contains("marker"))
+      rd.Error(ptr + "/marker", "a point output names either 'point' or 'marker'", "remove one of them");
+    else if (!o.contains("marker"))
+      required.push_back("point");
+  }
   rd.CheckObject(o, ptr, allowed, required, "an output");
   out.name = rd.Name(o, ptr, "output");
   if (!known) out.type.reset();
   auto has = [&](const char* key) { return known && std::find(allowed.begin(), allowed.end(), key) != allowed.end(); };
   const StringField strings[] = {{"body", &out.body}, {"frame", &out.frame}, {"joint", &out.joint},
                             {"body1", &out.body1}, {"body2", &out.body2}, {"output", &out.output},
-                            {"input", &out.input}, {"relative_to", &out.relative_to}, {"sequence", &out.sequence}};
+                            {"input", &out.input}, {"relative_to", &out.relative_to}, {"sequence", &out.sequence},
+                            {"marker", &out.marker}};
   for (auto [key, field] : strings)
     if (has(key)) *field = rd.String(o, key, ptr);
   const VectorField vectors[] = {{"point", &out.point}, {"point1", &out.point1}, {"point2", &out.point2},

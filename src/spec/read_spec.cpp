@@ -19,6 +19,7 @@ SpecReadResult ReadMechanismSpec(const std::string& text, const std::string& sou
   spec.source = source_name;
   spec_reader::ReadParameters(rd, doc, &spec);
   spec_reader::ReadUnits(rd, doc, &spec);
+  spec_reader::ReadGround(rd, doc, &spec);
   using spec_reader::ReadArray;
   ReadArray(rd, doc, "bodies", "body", Section::Bodies,
             [&](const json& e, const std::string& p) { spec_reader::ReadBody(rd, e, p, &spec); });

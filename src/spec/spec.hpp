@@ -85,12 +85,22 @@ struct ShapeSpec {
   bool ok = true;
 };
 
+/// A named frame fixed in a body, in the body's coordinates (file units): "point",
+/// "axis" (the frame's z; default the body's z) and "x_axis" (fixes the frame's x;
+/// default the body's x made normal to the axis).
+struct MarkerSpec {
+  std::string name;
+  std::optional<Vector3Spec> point, axis, x_axis;
+  std::string pointer;
+};
+
 struct BodySpec {
   std::optional<std::string> name;  // nullopt: missing or invalid (reported)
   std::optional<Vector3Spec> position;
   std::optional<OrientationSpec> orientation;
   std::optional<InertiaSpec> inertia;
   std::optional<ShapeSpec> shape;
+  std::vector<MarkerSpec> markers;
   std::string pointer;
 };
 
@@ -100,6 +110,7 @@ struct JointSpec {
   std::optional<std::string> body1, body2;
   std::optional<Vector3Spec> origin, axis, axis1, axis2, normal, point1, point2;
   std::optional<Scalar> pitch, length;
+  std::optional<std::string> marker1, marker2;  // markers of body1 and body2 instead of global geometry
   bool geometry_complete = true;     // every required geometry key is present
   std::string pointer;
 };
@@ -125,7 +136,7 @@ struct DriverSpec {
 
 struct OutputSpec {
   std::optional<std::string> name, type;
-  std::optional<std::string> body, frame, joint, body1, body2, output, input, relative_to, sequence;
+  std::optional<std::string> body, frame, joint, body1, body2, output, input, relative_to, sequence, marker;
   std::optional<Vector3Spec> point, point1, point2, vector1, vector2, about;
   std::string pointer;
 };
@@ -179,6 +190,7 @@ struct MechanismSpec {
   std::string source;             // the file name (or "inline")
   std::optional<UnitsSpec> units;
   std::vector<ParameterSpec> parameters;
+  std::vector<MarkerSpec> ground_markers;  // "ground": {"markers": {...}}, global coordinates
   std::vector<BodySpec> bodies;
   std::vector<JointSpec> joints;
   std::vector<DriverSpec> drivers;
