@@ -45,7 +45,7 @@ def main():
     cli = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build", "mechkin")
     png = sys.argv[2] if len(sys.argv) > 2 else os.path.join(root, "docs", "view-double-wishbone-suspension.png")
     page = os.path.join(tempfile.mkdtemp(), "suspension.html")
-    subprocess.run([cli, "view", os.path.join(root, "mechanisms", "double-wishbone-suspension.json"), "--up", "z", "-o", page],
+    subprocess.run([cli, "view", os.path.join(root, "mechanisms", "double-wishbone-suspension.json"), "-o", page],
                    check=True)
     screenshot(page, png, "t=0.3", size=(1400, 900))
     try:  # a 256-colour palette keeps the README's image small
