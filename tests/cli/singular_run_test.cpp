@@ -33,12 +33,12 @@ TEST(SingularRun, CrankEqualsRodStopsAtTheChangePointAtEveryOrder) {
   }
 }
 
-// The N-four-bar (IFToMM A02) with N = 2 windows, driven from 80° past the
-// singular position at −90° (unique passage): the run completes and says so on
-// stderr, naming the time (the crank reaches −90° at t = 10/20 s).
+// The N-four-bar (IFToMM A02) with N = 2 windows, drawn at −40° and driven at
+// −97°/s through the singular position at −90° (a unique passage, t = 50/97 s,
+// between rows): the run completes and says so on stderr.
 TEST(SingularRun, UniquePassageIsNotedOnStderr) {
   nlohmann::json j = {{"mechkin", 1}, {"name", "N-four-bar"}, {"units", {{"length", "m"}, {"angle", "deg"}}}};
-  const double th = -80 * M_PI / 180, ex = -std::sin(th), ey = std::cos(th);
+  const double th = -40 * M_PI / 180, ex = -std::sin(th), ey = std::cos(th);
   auto point = [](double x, double y) { return nlohmann::json::array({x, y, 0.0}); };
   auto rocker = [](int i) { return i == 0 ? std::string("crank") : "rocker" + std::to_string(i); };
   for (int i = 0; i <= 2; ++i) {
@@ -54,8 +54,8 @@ TEST(SingularRun, UniquePassageIsNotedOnStderr) {
     j["joints"].push_back({{"name", "right" + std::to_string(i)}, {"type", "revolute"}, {"body1", c},
                            {"body2", rocker(i)}, {"origin", point(i + ex, ey)}, {"axis", {0, 0, 1}}});
   }
-  j["drivers"] = {{{"name", "crank"}, {"type", "rotation"}, {"joint", "pivot0"}, {"function", "-20*t"}}};
-  j["analysis"] = {{"start", 0}, {"end", 1}, {"steps", 37}};
+  j["drivers"] = {{{"name", "crank"}, {"type", "rotation"}, {"joint", "pivot0"}, {"function", "-97*t"}}};
+  j["analysis"] = {{"start", 0}, {"end", 1}, {"steps", 100}};
   const std::string path = ::testing::TempDir() + "/n-four-bar-2.json";
   std::ofstream(path) << j.dump();
   RunOptions o;
@@ -64,9 +64,9 @@ TEST(SingularRun, UniquePassageIsNotedOnStderr) {
   EXPECT_EQ(RunRun(o, out, err), 0) << err.str();
   const std::string e = err.str();
   EXPECT_NE(e.find("mechkin run: note: "), std::string::npos) << e;
-  EXPECT_NE(e.find("unique"), std::string::npos) << e;
+  EXPECT_NE(e.find("unique passage through a singular position at t = 0.51546"), std::string::npos) << e;
   const std::string table = out.str();
-  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 1 + 38);  // header and every row
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 1 + 101);  // header and every row
 }
 
 }  // namespace
