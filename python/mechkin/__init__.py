@@ -7,6 +7,7 @@
     motion.to_pandas()                   # needs pandas
     model.check().mobility.redundant     # the `mechkin check` report, field for field
     mechkin.sweep(model, [{"rod": 110}, {"rod": 130}])  # a pandas DataFrame, one row per variant
+    mechkin.Mechanism("four-bar").add_body(...)  # a builder: to_dict(), compile() (mechkin/builder.py)
 
 Every front end validates through the same run request (mechkin.RunRequest):
 model.run(tol=5e-3) is refused with the message `mechkin run --tol 5e-3` prints.
@@ -20,8 +21,9 @@ import numpy as _np
 from numpy.lib.stride_tricks import as_strided as _as_strided
 
 from . import _mechkin
+from .builder import Mechanism
 
-__all__ = ["load", "loads", "Model", "Motion", "RunRequest", "CheckReport", "MobilityReport", "RangeReport",
+__all__ = ["load", "loads", "Mechanism", "Model", "Motion", "RunRequest", "CheckReport", "MobilityReport", "RangeReport",
            "ToleranceReport", "FormatError", "Diagnostic", "RunStop", "sweep"]
 
 RunRequest = _mechkin.RunRequest
@@ -165,9 +167,10 @@ class Model:
     def with_parameters(self, **values):
         """The same file compiled with other parameter values (like `mechkin run --set`).
         Raises FormatError when a value makes the geometry invalid."""
-        merged = dict(self._core.overrides)
-        merged.update({k: float(v) for k, v in values.items()})
-        return _compile(self._core.text, self._core.source, merged)
+        core, errors, _ = self._core.with_parameters({k: float(v) for k, v in values.items()})
+        if core is None:
+            raise FormatError(self._core.source, errors)
+        return Model(core)
 
     def check(self):
         """The `mechkin check` report (CheckReport): Grübler count, rank mobility,

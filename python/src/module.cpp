@@ -62,6 +62,22 @@ py::tuple CompileText(const std::string& text, const std::string& source, const 
   return py::make_tuple(m, py::list(), DiagnosticList(r.warnings));
 }
 
+// The same model compiled from its spec with other parameter values (no re-parse of
+// the text): (model or None, errors, warnings) as CompileText.
+py::tuple ModelWithParameters(const LoadedModel& m, const ParameterOverrides& values) {
+  LoadResult r;
+  {
+    py::gil_scoped_release release;
+    r = WithParameters(*m.model, values);
+  }
+  if (!r.ok()) return py::make_tuple(py::none(), DiagnosticList(r.errors), DiagnosticList(r.warnings));
+  auto variant = std::make_shared<LoadedModel>(m);
+  variant->model = std::make_shared<const Model>(std::move(*r.model));
+  variant->warnings = r.warnings;
+  for (const auto& kv : values) variant->overrides[kv.first] = kv.second;
+  return py::make_tuple(variant, py::list(), DiagnosticList(r.warnings));
+}
+
 PyCheckReport CheckModel(const LoadedModel& m) {
   LoadResult loaded;
   loaded.model = *m.model;
@@ -367,6 +383,7 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def_readonly("source", &LoadedModel::source)
       .def("info", &ModelInfo)
       .def("check", &CheckModel)
+      .def("with_parameters", &ModelWithParameters, py::arg("values"))
       .def("run", &RunModel, py::arg("request"), py::arg("start"), py::arg("end"), py::arg("steps"))
       .def_readonly("overrides", &LoadedModel::overrides)
       .def("run_variant", &RunVariantSummary, py::arg("values"), py::arg("order"), py::arg("tol"))
