@@ -6,6 +6,17 @@
 
 namespace mechkin {
 
+Compiler::Compiler(const MechanismSpec& spec, const ParameterOverrides& overrides, DiagnosticLog* out,
+                   std::shared_ptr<const ExpressionCache> expressions)
+    : spec_(spec), overrides_(overrides), out_(*out), expressions_(std::move(expressions)) {
+  if (!expressions_ || expressions_->spec() != &spec) {
+    recording_ = std::make_shared<ExpressionCache>(spec);
+    expressions_ = recording_;
+  }
+  slot_values_.assign(expressions_->num_slots(), 0.0);
+  slot_known_.assign(expressions_->num_slots(), 0);
+}
+
 std::optional<Model> Compiler::Run() {
   CompileHeader();
   CompileParameters();
@@ -29,6 +40,7 @@ std::optional<Model> Compiler::Run() {
   WarnStrayJointPoints();
   CheckDriverSpans();
   if (out_.has_errors()) return std::nullopt;
+  model_.expressions = expressions_;
   return std::move(model_);
 }
 
@@ -60,7 +72,8 @@ std::optional<double> Compiler::Value(const Scalar& s) {
 // parameter that failed is not evaluated (that parameter has its error).
 std::optional<double> Compiler::ConstantExpression(const std::string& text, const std::string& p) {
   if (UsesFailedParameter(text)) return std::nullopt;
-  try {
+  if (const auto cached = CachedConstant(text)) return cached;
+  try {  // not cached, or it fails: parse with the values, for the exact diagnostic
     const Expression e = Expression::Parse(text, &symbols_, /*allow_time=*/false);
     const double d = e.Eval(0).c[0];
     if (std::isfinite(d)) return d;
@@ -72,6 +85,46 @@ std::optional<double> Compiler::ConstantExpression(const std::string& text, cons
           "check the expression and the parameters' values");
   }
   return std::nullopt;
+}
+
+// The value from the spec's expression parsed once (expression_cache.hpp), when it
+// parses and evaluates to a finite number with every parameter it uses resolved;
+// otherwise nullopt and the caller takes the diagnosing path. The same number as
+// parsing with the values substituted: the same nodes, constants as slots.
+std::optional<double> Compiler::CachedConstant(const std::string& text) {
+  const ExpressionCache::Constant* c = expressions_->FindConstant(&text);
+  if (c && c->expression.text() != text) c = nullptr;  // keyed by address: make sure it is this text
+  try {
+    if (!c && recording_)
+      c = recording_->RecordConstant(&text, Expression::ParseWithSlots(text, expressions_->slots(), false));
+    if (!c) return std::nullopt;
+    for (int slot : c->slots)
+      if (!slot_known_[slot]) return std::nullopt;
+    const double d = c->expression.EvalWithSlots(0, slot_values_).c[0];
+    if (std::isfinite(d)) return d;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+// A parameter-free function of time, parsed once per spec.
+std::shared_ptr<const Expression> Compiler::CachedTimeFunction(const std::string& text) {
+  if (auto e = expressions_->FindTimeFunction(&text); e && e->text() == text) return e;
+  if (!recording_ || !NamesUsed(text).empty()) return nullptr;
+  try {
+    auto e = std::make_shared<const Expression>(Expression::Parse(text));
+    recording_->RecordTimeFunction(&text, e);
+    return e;
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+}
+
+const std::vector<std::string>& Compiler::NamesUsed(const std::string& text) {
+  if (const auto* names = expressions_->FindNames(&text)) return *names;
+  if (recording_) return recording_->RecordNames(&text);
+  names_scratch_ = Expression::Names(text);
+  return names_scratch_;
 }
 
 bool Compiler::UsesFailedParameter(const std::string& text) const {
@@ -263,16 +316,21 @@ void Compiler::CompileView() {
 // ---- Entry points -----------------------------------------------------------
 
 std::optional<Model> CompileModel(std::shared_ptr<const MechanismSpec> spec, const ParameterOverrides& overrides,
-                                  DiagnosticLog* out) {
-  std::optional<Model> model = Compiler(*spec, overrides, out).Run();
+                                  DiagnosticLog* out, std::shared_ptr<const ExpressionCache> expressions) {
+  std::optional<Model> model = Compiler(*spec, overrides, out, std::move(expressions)).Run();
   if (model) model->spec = std::move(spec);
   return model;
 }
 
 LoadResult Compile(std::shared_ptr<const MechanismSpec> spec, const ParameterOverrides& overrides) {
+  return Compile(std::move(spec), overrides, nullptr);
+}
+
+LoadResult Compile(std::shared_ptr<const MechanismSpec> spec, const ParameterOverrides& overrides,
+                   std::shared_ptr<const ExpressionCache> expressions) {
   DiagnosticLog list;
   LoadResult result;
-  result.model = CompileModel(std::move(spec), overrides, &list);
+  result.model = CompileModel(std::move(spec), overrides, &list, std::move(expressions));
   result.errors = std::move(list.errors);
   result.warnings = std::move(list.warnings);
   if (!result.errors.empty()) result.model.reset();

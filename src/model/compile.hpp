@@ -33,9 +33,13 @@ using ParameterOverrides = std::map<std::string, double>;
 LoadResult Compile(const MechanismSpec& spec, const ParameterOverrides& overrides = {});
 /// The same, sharing `spec` with the model (no copy).
 LoadResult Compile(std::shared_ptr<const MechanismSpec> spec, const ParameterOverrides& overrides = {});
+/// A variant: `expressions` (a model's, compiled from the same spec) saves parsing
+/// the spec's expressions again; ignored when it belongs to another spec.
+LoadResult Compile(std::shared_ptr<const MechanismSpec> spec, const ParameterOverrides& overrides,
+                   std::shared_ptr<const ExpressionCache> expressions);
 /// The model, or nullopt when `out` received errors (or the spec is not valid);
 /// the diagnostics keep their places in the file (for merging with the reader's).
 std::optional<Model> CompileModel(std::shared_ptr<const MechanismSpec> spec, const ParameterOverrides& overrides,
-                                  DiagnosticLog* out);
+                                  DiagnosticLog* out, std::shared_ptr<const ExpressionCache> expressions = nullptr);
 
 }  // namespace mechkin

@@ -11,6 +11,7 @@ std::optional<TimeFunction> Compiler::CompileFunction(const FunctionSpec& f, dou
   if (f.kind == FunctionSpec::Kind::Invalid) return std::nullopt;  // reported by the reader
   if (f.kind == FunctionSpec::Kind::Table) return CompileTable(f, scale);
   if (UsesFailedParameter(f.text)) return std::nullopt;
+  if (auto cached = CachedTimeFunction(f.text)) return TimeFunction(std::move(cached), scale);
   try {
     auto e = std::make_shared<Expression>(Expression::Parse(f.text, &symbols_));
     return TimeFunction(e, scale);

@@ -55,7 +55,7 @@ void Compiler::ResolveParameters(const std::vector<size_t>& pending) {
   for (size_t k = 0; k < n; ++k) {
     const ParameterSpec& ps = spec_.parameters[pending[k]];
     if (ps.value->kind != Scalar::Kind::Expression || overrides_.count(ps.name)) continue;
-    for (const std::string& used : Expression::Names(ps.value->text)) {
+    for (const std::string& used : NamesUsed(ps.value->text)) {
       const auto it = node_of.find(used);
       if (it == node_of.end() || it->second == k) continue;
       if (std::find(deps[k].begin(), deps[k].end(), it->second) != deps[k].end()) continue;
@@ -85,12 +85,20 @@ void Compiler::ResolveParameters(const std::vector<size_t>& pending) {
 // One parameter: its override, its number or its expression over those resolved.
 bool Compiler::ResolveParameter(const ParameterSpec& ps) {
   if (const auto o = overrides_.find(ps.name); o != overrides_.end()) {
-    symbols_[ps.name] = o->second;
+    SetParameterValue(ps.name, o->second);
     return true;
   }
   const auto d = Value(*ps.value);
-  if (d) symbols_[ps.name] = *d;
+  if (d) SetParameterValue(ps.name, *d);
   return d.has_value();
+}
+
+void Compiler::SetParameterValue(const std::string& name, double value) {
+  symbols_[name] = value;
+  if (const auto slot = expressions_->slots().find(name); slot != expressions_->slots().end()) {
+    slot_values_[slot->second] = value;
+    slot_known_[slot->second] = 1;
+  }
 }
 
 // Each cycle once, by its members only (not the parameters that merely use one),

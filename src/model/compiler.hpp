@@ -15,14 +15,17 @@
 #include <vector>
 
 #include "model/compile.hpp"
+#include "model/expression_cache.hpp"
 #include "model/frames.hpp"
 
 namespace mechkin {
 
 class Compiler {
  public:
-  Compiler(const MechanismSpec& spec, const ParameterOverrides& overrides, DiagnosticLog* out)
-      : spec_(spec), overrides_(overrides), out_(*out) {}
+  /// `expressions`: the spec's parsed expressions from an earlier compile, or null
+  /// (this compile records them).
+  Compiler(const MechanismSpec& spec, const ParameterOverrides& overrides, DiagnosticLog* out,
+           std::shared_ptr<const ExpressionCache> expressions);
   /// Every section, then (when nothing failed) the warning passes.
   std::optional<Model> Run();
 
@@ -37,6 +40,10 @@ class Compiler {
   std::optional<double> ConstantExpression(const std::string& text, const std::string& p);
   std::string UnknownNameFix(const ExpressionError& err) const;
   bool UsesFailedParameter(const std::string& text) const;
+  std::optional<double> CachedConstant(const std::string& text);
+  std::shared_ptr<const Expression> CachedTimeFunction(const std::string& text);
+  const std::vector<std::string>& NamesUsed(const std::string& text);
+  void SetParameterValue(const std::string& name, double value);
   std::optional<int> Integer(const std::optional<Scalar>& s, const std::string& key);
   std::optional<Vec3> Vector(const std::optional<Vector3Spec>& v, bool nonzero);
   std::optional<Vec3> VectorValue(const Vector3Spec& v, bool nonzero);
@@ -145,6 +152,11 @@ class Compiler {
   DiagnosticLog& out_;
   Model model_;
   ExpressionSymbols symbols_;
+  std::shared_ptr<const ExpressionCache> expressions_;  // what this compile reads
+  std::shared_ptr<ExpressionCache> recording_;          // first compile of a spec: what it records
+  std::vector<double> slot_values_;                     // per parameter slot, its value once resolved
+  std::vector<char> slot_known_;
+  std::vector<std::string> names_scratch_;
   std::set<std::string> failed_parameters_;
   std::map<std::string, BodyIndex> body_index_;
   std::map<BodyIndex, std::map<std::string, std::optional<JointFrame>>> markers_;  // nullopt: the marker failed

@@ -1,4 +1,6 @@
 #include <cctype>
+#include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -35,8 +37,9 @@ size_t NumberEnd(const std::string& s, size_t start) {
 
 class ExpressionParser {
  public:
-  ExpressionParser(Expression* e, const ExpressionSymbols* symbols, bool allow_time)
-      : e_(e), s_(e->text_), symbols_(symbols), allow_time_(allow_time) {}
+  ExpressionParser(Expression* e, const ExpressionSymbols* symbols, bool allow_time,
+                   const ExpressionSlots* slots = nullptr)
+      : e_(e), s_(e->text_), symbols_(symbols), slots_(slots), allow_time_(allow_time) {}
 
   static const std::map<std::string, Expression::Op>& Functions() {
     static const std::map<std::string, Op> kFunctions = {
@@ -167,10 +170,14 @@ class ExpressionParser {
       const auto sym = symbols_->find(name);
       if (sym != symbols_->end()) return Add(Op::Const, -1, -1, sym->second);
     }
+    if (slots_) {
+      const auto slot = slots_->find(name);
+      if (slot != slots_->end()) return Add(Op::Slot, slot->second);
+    }
     const auto it = Functions().find(name);
     if (it == Functions().end())
       throw ExpressionError("unknown name '" + name + "' (use " + (allow_time_ ? "t, " : "") +
-                                (symbols_ && !symbols_->empty() ? "the parameters, " : "") +
+                                ((symbols_ && !symbols_->empty()) || (slots_ && !slots_->empty()) ? "the parameters, " : "") +
                                 "pi, sin, cos, tan, asin, acos, atan, atan2, exp, log, sqrt)",
                             col, name);
     if (!Accept('(')) throw ExpressionError("'" + name + "' needs '(' after it", Col());
@@ -187,6 +194,7 @@ class ExpressionParser {
   Expression* e_;
   const std::string& s_;
   const ExpressionSymbols* symbols_;
+  const ExpressionSlots* slots_;
   bool allow_time_;
   size_t pos_ = 0;
 };
@@ -224,6 +232,21 @@ Expression Expression::Parse(const std::string& text, const ExpressionSymbols* s
   return e;
 }
 
+Expression Expression::ParseWithSlots(const std::string& text, const ExpressionSlots& slots, bool allow_time) {
+  if (text.size() > kMaxLength) return Parse(text, nullptr, allow_time);  // throws the length error
+  Expression e;
+  e.text_ = text;
+  ExpressionParser(&e, nullptr, allow_time, &slots).Run();
+  return e;
+}
+
+std::vector<int> Expression::SlotsUsed() const {
+  std::vector<int> used;
+  for (const Node& n : nodes_)
+    if (n.op == Op::Slot && std::find(used.begin(), used.end(), n.a) == used.end()) used.push_back(n.a);
+  return used;
+}
+
 namespace {
 
 // Value-only arithmetic for the extended-precision evaluation, named like the jet
@@ -250,6 +273,7 @@ V Expression::EvalNode(const Node& n, const V& t, const std::vector<V>& v) {
   switch (n.op) {
     case Op::Const: return ConstantOf<V>(n.value);
     case Op::Time: return t;
+    case Op::Slot: return ConstantOf<V>(std::numeric_limits<double>::quiet_NaN());  // EvalWithSlots values them
     case Op::Neg: return -v[n.a];
     case Op::Add: return v[n.a] + v[n.b];
     case Op::Sub: return v[n.a] - v[n.b];
@@ -278,6 +302,15 @@ Jet Expression::Eval(double t) const {
   value.resize(nodes_.size());
   const Jet time = Jet::Variable(t);
   for (size_t i = 0; i < nodes_.size(); ++i) value[i] = EvalNode(nodes_[i], time, value);
+  return value[root_];
+}
+
+Jet Expression::EvalWithSlots(double t, const std::vector<double>& slot_values) const {
+  thread_local std::vector<Jet> value;
+  value.resize(nodes_.size());
+  const Jet time = Jet::Variable(t);
+  for (size_t i = 0; i < nodes_.size(); ++i)
+    value[i] = nodes_[i].op == Op::Slot ? Jet::Constant(slot_values[nodes_[i].a]) : EvalNode(nodes_[i], time, value);
   return value[root_];
 }
 

@@ -58,7 +58,7 @@ LoadResult WithParameters(const Model& model, const ParameterOverrides& override
   for (const auto& p : model.parameters)
     if (p.overridden) merged[p.name] = p.value;
   for (const auto& kv : overrides) merged[kv.first] = kv.second;
-  return Compile(model.spec, merged);
+  return Compile(model.spec, merged, model.expressions);
 }
 
 LoadResult LoadMechanismFile(const std::string& path, const ParameterOverrides& overrides) {

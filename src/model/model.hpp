@@ -18,6 +18,7 @@
 namespace mechkin {
 
 struct MechanismSpec;  // spec/spec.hpp: what the file says (a model keeps it for its variants)
+class ExpressionCache;  // model/expression_cache.hpp: the spec's expressions, parsed once
 
 /// Index of a moving body in Model::bodies, or kGround.
 using BodyIndex = int;
@@ -165,6 +166,8 @@ struct Model {
   /// What the file says (shared by every variant), to compile variants with other
   /// parameter values; the model keeps no file text.
   std::shared_ptr<const MechanismSpec> spec;
+  /// The spec's expressions parsed once, for compiling its variants without parsing.
+  std::shared_ptr<const ExpressionCache> expressions;
 
   const Parameter* FindParameter(const std::string& name) const;
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "math/taylor.hpp"
@@ -23,6 +24,8 @@ struct ExpressionError : std::runtime_error {
 
 /// Named constants an expression may use besides t and pi (the file's parameters).
 using ExpressionSymbols = std::map<std::string, double>;
+/// Parameter name → slot index, for expressions parsed once and valued per variant.
+using ExpressionSlots = std::unordered_map<std::string, int>;
 
 /// A parsed expression in `t`. Grammar (format-v1): + - * / ^ (right-assoc.,
 /// binds tighter than unary minus), parentheses, numbers, `t`, `pi`, and
@@ -36,6 +39,15 @@ class Expression {
   /// expressions that must be constants (numbers of the geometry).
   static Expression Parse(const std::string& text, const ExpressionSymbols* symbols = nullptr,
                           bool allow_time = true);
+  /// Parses once for many parameter values: the names in `slots` (parameter name →
+  /// slot) stay symbolic, valued by EvalWithSlots. Throws as Parse; Eval of such an
+  /// expression gives NaN for the slots.
+  static Expression ParseWithSlots(const std::string& text, const ExpressionSlots& slots, bool allow_time);
+  /// Value and derivatives at t with slot k valued slot_values[k] (the same numbers
+  /// as Parse with those values substituted, then Eval).
+  Jet EvalWithSlots(double t, const std::vector<double>& slot_values) const;
+  /// The slots the expression uses, each once, in order of first use.
+  std::vector<int> SlotsUsed() const;
   /// Identifiers reserved by the grammar (t, pi and the function names).
   static bool IsReservedName(const std::string& name);
   /// The names an expression uses besides the reserved ones (its parameters), found
@@ -50,7 +62,7 @@ class Expression {
   const std::string& text() const { return text_; }
 
  private:
-  enum class Op { Const, Time, Neg, Add, Sub, Mul, Div, Pow, Sin, Cos, Tan, Asin, Acos, Atan,
+  enum class Op { Const, Time, Slot, Neg, Add, Sub, Mul, Div, Pow, Sin, Cos, Tan, Asin, Acos, Atan,
                   Atan2, Exp, Log, Sqrt };
   struct Node { Op op; double value = 0; int a = -1, b = -1; };
   /// One node on jets (Eval) or on long double values (ValueExtended).

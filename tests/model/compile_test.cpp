@@ -191,6 +191,29 @@ TEST(Compile, WithParametersEqualsAFreshLoadWithSet) {
   EXPECT_EQ(mv.values(), mf.values());
 }
 
+// Variants evaluate the spec's expressions parsed once (model/expression_cache.hpp):
+// they share the base model's cache, and an override that breaks an expression gets
+// the diagnostic a fresh load with --set gets.
+TEST(Compile, VariantsShareTheParsedExpressionsAndKeepTheirDiagnostics) {
+  const std::string path = std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-slider-crank.json";
+  const LoadResult base = LoadMechanismFile(path);
+  ASSERT_TRUE(base.ok());
+  ASSERT_NE(base.model->expressions, nullptr);
+  const LoadResult variant = WithParameters(*base.model, {{"rod", 125}});
+  ASSERT_TRUE(variant.ok());
+  EXPECT_EQ(variant.model->expressions, base.model->expressions);
+  // rod shorter than the offset: slider_x = pin_x + sqrt(rod^2 - (offset - pin_y)^2) is sqrt of < 0
+  const ParameterOverrides broken = {{"rod", 5}};
+  const LoadResult bad = WithParameters(*base.model, broken), fresh = LoadMechanismFile(path, broken);
+  ASSERT_FALSE(bad.ok());
+  ASSERT_EQ(bad.errors.size(), fresh.errors.size());
+  for (size_t k = 0; k < bad.errors.size(); ++k) {
+    EXPECT_EQ(bad.errors[k].pointer, fresh.errors[k].pointer);
+    EXPECT_EQ(bad.errors[k].message, fresh.errors[k].message);
+  }
+  EXPECT_NE(bad.errors.front().pointer.find("/parameters/slider_x"), std::string::npos) << bad.errors.front().pointer;
+}
+
 TEST(SpecReader, ElementsKeepTheirPointersAndExpressions) {
   std::ifstream in(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-four-bar.json");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
