@@ -2,6 +2,8 @@
 // with one parameter override per iteration (what `sweep`, `tolerance`, the
 // sensitivity sides and Python's with_parameters pay per variant), against the full
 // read (JSON text → spec) + compile that every variant paid before the spec layer.
+// Also a sweep variant whole (RunVariant: compile + run + summary) against its run
+// alone on the precompiled variant (tools/sweep_benchmark.sh prints the ratio).
 // Run: ./build/tools/bench_compile
 #include <benchmark/benchmark.h>
 
@@ -9,7 +11,11 @@
 #include <iterator>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
+#include "analysis/motion.hpp"
+#include "analysis/run_request.hpp"
+#include "analysis/sweep.hpp"
 #include "model/compile.hpp"
 #include "model/loader.hpp"
 #include "spec/reader.hpp"
@@ -69,6 +75,34 @@ void BM_ReadSpecOnly(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ReadSpecOnly)->Unit(benchmark::kMicrosecond);
+
+// The run of a sweep variant alone, on models compiled beforehand (the same 200 crank lengths).
+void BM_VariantRunOnly(benchmark::State& state) {
+  LoadResult base = LoadMechanismText(FourBarText(), "parametric-four-bar.json");
+  if (!base.ok()) throw std::runtime_error("cannot load the four-bar");
+  std::vector<Model> models;
+  for (int64_t i = 0; i < 200; ++i) models.push_back(*WithParameters(*base.model, {{"a", CrankLength(i)}}).model);
+  const RunRequest request = VariantRequest(models.front(), SweepOptions::DefaultRequest());
+  int64_t i = 0;
+  for (auto _ : state) {
+    const Motion m = RunMotion(models[static_cast<size_t>(i++ % 200)], request);
+    benchmark::DoNotOptimize(m.rows());
+  }
+}
+BENCHMARK(BM_VariantRunOnly)->Unit(benchmark::kMicrosecond);
+
+// A sweep variant whole: compile from the spec, run, summarise (what RunSweep does per variant).
+void BM_VariantWhole(benchmark::State& state) {
+  LoadResult base = LoadMechanismText(FourBarText(), "parametric-four-bar.json");
+  if (!base.ok()) throw std::runtime_error("cannot load the four-bar");
+  const SweepOptions options;
+  int64_t i = 0;
+  for (auto _ : state) {
+    const VariantSummary v = RunVariant(*base.model, {{"a", CrankLength(i++)}}, options);
+    benchmark::DoNotOptimize(v.rows);
+  }
+}
+BENCHMARK(BM_VariantWhole)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace mechkin

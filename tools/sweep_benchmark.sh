@@ -20,3 +20,20 @@ done
 cmp -s "$out/sweep1.csv" "$out/sweep2.csv" && echo "1- and 2-thread summaries identical"
 printf "speed-up 1 -> 2 threads: %.2fx\n" "$(echo "${rate[2]} / ${rate[1]}" | bc -l)"
 cut -d, -f6 "$out/sweep1.csv" | tail -n +2 | sort | uniq -c | sed 's/^/  status: /'
+
+# What a variant costs beyond its run (issue 22: no more than the run plus 5 %):
+# instruction counts under callgrind, which the machine's load does not change.
+bench="$build/tools/bench_compile"
+if [ -x "$bench" ] && command -v valgrind >/dev/null && command -v callgrind_annotate >/dev/null; then
+  valgrind --tool=callgrind --callgrind-out-file="$out/cg.out" "$bench" --benchmark_filter=VariantWhole \
+    --benchmark_min_time=1 >/dev/null 2>&1
+  callgrind_annotate --inclusive=yes "$out/cg.out" 2>/dev/null | awk '
+    /mechkin::RunVariant\(/ && !v { gsub(",", "", $1); v = $1 }
+    /mechkin::RunMotion\(mechkin::Model const&, mechkin::RunRequest const&\)/ && !r { gsub(",", "", $1); r = $1 }
+    /mechkin::WithParameters\(/ && !c { gsub(",", "", $1); c = $1 }
+    END { if (v && r) printf "a variant (compile + run + summary): %.1f%% more instructions than its run alone (compile %.1f%%)\n", 100 * (v - r) / r, 100 * c / r }'
+  "$bench" --benchmark_filter='Variant|WithParameters' --benchmark_min_time=1 2>/dev/null | grep '^BM_' |
+    sed 's/^/  (CPU time, machine load applies) /'
+else
+  echo "(build tools/bench_compile and install valgrind for the variant-vs-run split)"
+fi

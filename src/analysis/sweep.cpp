@@ -66,7 +66,8 @@ std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, un
 
 namespace {
 
-// A variant's run: the outputs' columns (no outputs: the bodies'), no forces.
+}  // namespace
+
 RunRequest VariantRequest(const Model& model, const RunRequest& request) {
   RunRequest r = request;
   r.outputs.reset();
@@ -77,6 +78,8 @@ RunRequest VariantRequest(const Model& model, const RunRequest& request) {
   r.keep_step_diagnostics = false;
   return r;
 }
+
+namespace {
 
 TableOptions SweepTable(const Model& model, int order) {
   RunRequest r;

@@ -72,6 +72,9 @@ struct SweepResult {
 /// Runs the shard's variants on the threads. Throws std::invalid_argument for an
 /// invalid options.request (RunRequest::IsValid).
 SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& variants, const SweepOptions& options);
+/// The run a variant does: the request's order, tolerance and solver; the outputs'
+/// columns (no outputs: the bodies'), no forces, no sensitivities.
+RunRequest VariantRequest(const Model& model, const RunRequest& request);
 /// One variant's summary (what RunSweep does per variant; the Python binding's unit of work).
 VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, const SweepOptions& options);
 /// The column headers a sweep of `model` summarises.
