@@ -212,10 +212,26 @@ def notes_and_refusals(exe, tmp):
         failures.append("missing file: exit %d, %r" % (out.returncode, out.stderr))
 
 
+def written_on_markers(src, exe, tmp):
+    """A file written on markers by hand (default marker frames, a point output on a marker)."""
+    original = os.path.join(src, "tests", "data", "four-bar-markers.json")
+    back = os.path.join(tmp, "four-bar-markers.global.json")
+    convert(exe, original, back)
+    doc = json.load(open(back))
+    if "ground" in doc or any("markers" in b for b in doc["bodies"]):
+        failures.append("four-bar-markers: markers left in the global form")
+    tracer = doc["outputs"][1]
+    if "marker" in tracer or [round(x, 9) for x in tracer["point"]] != [76.940482998, 53.556126406, 0]:
+        failures.append("four-bar-markers: the tracer output is not the coupler's origin: %r" % tracer)
+    same_table(exe, original, back, "four-bar-markers.json -> global")
+    same_table(exe, os.path.join(src, "mechanisms", "planar-four-bar.json"), back, "planar-four-bar vs four-bar-markers -> global")
+
+
 def main():
     src, exe = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as tmp:
         roundtrip_bundled(src, exe, tmp)
+        written_on_markers(src, exe, tmp)
         parametric_set(src, exe, tmp)
         notes_and_refusals(exe, tmp)
     for f in failures:
