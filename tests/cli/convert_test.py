@@ -16,6 +16,7 @@
    refused; the input is never overwritten; -o - writes stdout.
 Usage: convert_test.py SOURCE_DIR MECHKIN_BINARY
 """
+import copy
 import csv
 import io
 import json
@@ -189,6 +190,14 @@ def notes_and_refusals(exe, tmp):
     b = table(exe, os.path.join(tmp, "rotated.markers.json"), "--set", "r=50")
     if worst_difference(a, b)[0] < 1e-3:
         failures.append("--set r=50 moved the rotated crank's marker though the note says it cannot")
+    # A body that already has a marker named after the joint gets a suffixed one.
+    taken = copy.deepcopy(ROTATED)
+    taken["bodies"][1]["markers"] = {"elbow": {"point": [1, 2, 3]}}
+    json.dump(taken, open(os.path.join(tmp, "taken.json"), "w"))
+    out = run(exe, "convert", os.path.join(tmp, "taken.json"))
+    conv = json.loads(out.stdout) if out.returncode == 0 else {"joints": [{}, {}]}
+    if conv["joints"][1].get("marker2") != "elbow_2" or conv["bodies"][1]["markers"].get("elbow") != {"point": [1, 2, 3]}:
+        failures.append("a taken marker name: %r" % conv["joints"][1])
     # Markers that do not coincide at the design pose cannot become one global frame.
     bad = json.load(open(os.path.join(tmp, "rotated.markers.json")))
     bad["bodies"][1]["markers"]["elbow"]["point"] = [5, -10, 0]
@@ -224,6 +233,10 @@ def written_on_markers(src, exe, tmp):
     if "marker" in tracer or [round(x, 9) for x in tracer["point"]] != [76.940482998, 53.556126406, 0]:
         failures.append("four-bar-markers: the tracer output is not the coupler's origin: %r" % tracer)
     same_table(exe, original, back, "four-bar-markers.json -> global")
+    # Already on markers: --to markers changes nothing.
+    same = run(exe, "convert", original, "--to", "markers")
+    if same.returncode != 0 or json.loads(same.stdout) != json.load(open(original)):
+        failures.append("four-bar-markers --to markers is not the same document")
     same_table(exe, os.path.join(src, "mechanisms", "planar-four-bar.json"), back, "planar-four-bar vs four-bar-markers -> global")
 
 
