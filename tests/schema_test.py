@@ -6,12 +6,18 @@
    the loader. Defects the schema cannot express (name references, duplicates,
    geometry such as non-perpendicular universal axes) are listed in SEMANTIC and
    must still be rejected by the loader.
+3. Markers (issue 22): a file on markers validates (tests/data/four-bar-markers.json
+   and every bundled mechanism after `mechkin convert --to markers`); a joint giving
+   both global geometry and markers, and a point output giving both a point and a
+   marker, are rejected by both the schema and the loader.
 Usage: schema_test.py SOURCE_DIR MECHKIN_BINARY
 """
 import json
 import os
+import copy
 import subprocess
 import sys
+import tempfile
 
 import jsonschema
 
@@ -62,8 +68,60 @@ def main():
             print("FAIL %s: accepted by the schema but rejected by the loader" % name)
         else:
             passed += 1
+    p, f = check_markers(src, exe, validator)
+    passed += p
+    failures += f
     print("%d passed, %d failed" % (passed, failures))
     return 1 if failures else 0
+
+
+def loader_rejects(exe, doc):
+    with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+        json.dump(doc, f)
+    try:
+        return subprocess.run([exe, "check", f.name], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode == 1
+    finally:
+        os.unlink(f.name)
+
+
+def check_markers(src, exe, validator):
+    passed, failures = 0, 0
+
+    def expect(ok, what):
+        nonlocal passed, failures
+        if ok:
+            passed += 1
+        else:
+            failures += 1
+            print("FAIL " + what)
+
+    doc = json.load(open(os.path.join(src, "tests", "data", "four-bar-markers.json")))
+    errs = list(validator.iter_errors(doc))
+    expect(not errs, "four-bar-markers.json rejected by the schema: %s" % (errs[0].message if errs else ""))
+    mixed = copy.deepcopy(doc)
+    mixed["joints"][1]["origin"] = [20, 34.641016151378, 0]
+    expect(not validator.is_valid(mixed), "a joint with both origin and markers accepted by the schema")
+    expect(loader_rejects(exe, mixed), "a joint with both origin and markers accepted by the loader")
+    half = copy.deepcopy(doc)
+    del half["joints"][1]["marker2"]
+    expect(not validator.is_valid(half), "a joint with marker1 only accepted by the schema")
+    expect(loader_rejects(exe, half), "a joint with marker1 only accepted by the loader")
+    both = copy.deepcopy(doc)
+    both["outputs"][1]["point"] = [0, 0, 0]
+    expect(not validator.is_valid(both), "a point output with both point and marker accepted by the schema")
+    expect(loader_rejects(exe, both), "a point output with both point and marker accepted by the loader")
+    bad_name = copy.deepcopy(doc)
+    bad_name["bodies"][0]["markers"]["9pin"] = {"point": [0, 0, 0]}
+    expect(not validator.is_valid(bad_name), "a marker named '9pin' accepted by the schema")
+    expect(loader_rejects(exe, bad_name), "a marker named '9pin' accepted by the loader")
+    mech_dir = os.path.join(src, "mechanisms")
+    for f in sorted(os.listdir(mech_dir)):
+        if not f.endswith(".json"):
+            continue
+        out = subprocess.run([exe, "convert", os.path.join(mech_dir, f), "--to", "markers"], capture_output=True, text=True)
+        errs = list(validator.iter_errors(json.loads(out.stdout))) if out.returncode == 0 else ["convert failed"]
+        expect(not errs, "%s in the markers form rejected by the schema: %s" % (f, errs[0] if errs else ""))
+    return passed, failures
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@
 
 #include "cli/commands/bench_command.hpp"
 #include "cli/commands/check_command.hpp"
+#include "cli/commands/convert_command.hpp"
 #include "cli/commands/range_command.hpp"
 #include "cli/commands/run_command.hpp"
 #include "cli/commands/sweep_command.hpp"
@@ -32,6 +33,8 @@ int main(int argc, char** argv) {
     mechkin::SetupSweepCommand(app, &sweep);
     mechkin::RangeCommandOptions range;
     mechkin::SetupRangeCommand(app, &range);
+    mechkin::ConvertCommandOptions convert;
+    mechkin::SetupConvertCommand(app, &convert);
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -45,6 +48,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("view")) code = mechkin::RunView(view, std::cout, std::cerr);
     if (app.got_subcommand("range")) code = mechkin::RunRangeCommand(range, std::cout, std::cerr);
     if (app.got_subcommand("sweep")) code = mechkin::RunSweepCommand(sweep, std::cout, std::cerr);
+    if (app.got_subcommand("convert")) code = mechkin::RunConvertCommand(convert, std::cout, std::cerr);
     if (app.got_subcommand("tolerance")) code = mechkin::RunToleranceCommand(tolerance, std::cout, std::cerr);
     // A report that could not be written is a failure, not a success.
     std::cout.flush();
