@@ -39,11 +39,11 @@ void BM_CompileVariant(benchmark::State& state) {
 BENCHMARK(BM_CompileVariant)->Unit(benchmark::kMicrosecond);
 
 void BM_WithParameters(benchmark::State& state) {
-  LoadResult base = LoadMechanismText(FourBarText(), "parametric-four-bar.json");
+  LoadResult base = LoadTextUnassembled(FourBarText(), "parametric-four-bar.json");
   if (!base.ok()) throw std::runtime_error("cannot load the four-bar");
   int64_t i = 0;
   for (auto _ : state) {
-    LoadResult r = WithParameters(*base.model, {{"a", CrankLength(i++)}});
+    LoadResult r = WithParametersUnassembled(*base.model, {{"a", CrankLength(i++)}});
     if (!r.ok()) throw std::runtime_error("variant failed");
     benchmark::DoNotOptimize(r.model->bodies.data());
   }
@@ -54,7 +54,7 @@ void BM_ReadAndCompile(benchmark::State& state) {
   const std::string text = FourBarText();
   int64_t i = 0;
   for (auto _ : state) {
-    LoadResult r = LoadMechanismText(text, "parametric-four-bar.json", {{"a", CrankLength(i++)}});
+    LoadResult r = LoadTextUnassembled(text, "parametric-four-bar.json", {{"a", CrankLength(i++)}});
     if (!r.ok()) throw std::runtime_error("variant failed");
     benchmark::DoNotOptimize(r.model->bodies.data());
   }
