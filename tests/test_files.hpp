@@ -9,7 +9,7 @@
 #include <string>
 
 #include "analysis/motion.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin::testing_files {
 

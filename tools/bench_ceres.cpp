@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "analysis/kinematic_analysis.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 namespace {

@@ -17,6 +17,7 @@
 #include "analysis/run_request.hpp"
 #include "analysis/sweep.hpp"
 #include "model/compile.hpp"
+#include "analysis/load.hpp"
 #include "model/loader.hpp"
 #include "spec/reader.hpp"
 
@@ -45,11 +46,11 @@ void BM_CompileVariant(benchmark::State& state) {
 BENCHMARK(BM_CompileVariant)->Unit(benchmark::kMicrosecond);
 
 void BM_WithParameters(benchmark::State& state) {
-  LoadResult base = LoadMechanismText(FourBarText(), "parametric-four-bar.json");
+  LoadResult base = LoadTextUnassembled(FourBarText(), "parametric-four-bar.json");
   if (!base.ok()) throw std::runtime_error("cannot load the four-bar");
   int64_t i = 0;
   for (auto _ : state) {
-    LoadResult r = WithParameters(*base.model, {{"a", CrankLength(i++)}});
+    LoadResult r = WithParametersUnassembled(*base.model, {{"a", CrankLength(i++)}});
     if (!r.ok()) throw std::runtime_error("variant failed");
     benchmark::DoNotOptimize(r.model->bodies.data());
   }
@@ -60,7 +61,7 @@ void BM_ReadAndCompile(benchmark::State& state) {
   const std::string text = FourBarText();
   int64_t i = 0;
   for (auto _ : state) {
-    LoadResult r = LoadMechanismText(text, "parametric-four-bar.json", {{"a", CrankLength(i++)}});
+    LoadResult r = LoadTextUnassembled(text, "parametric-four-bar.json", {{"a", CrankLength(i++)}});
     if (!r.ok()) throw std::runtime_error("variant failed");
     benchmark::DoNotOptimize(r.model->bodies.data());
   }

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "constraints/system.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "kinematics/position.hpp"
 
 namespace mechkin {

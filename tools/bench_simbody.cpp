@@ -16,7 +16,7 @@
 #include <cstdio>
 
 #include "analysis/kinematic_analysis.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 
 #include "analysis/kinematic_analysis.hpp"
 #include "mobility/mobility.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "kinematics/newton.hpp"
 
 namespace mechkin {

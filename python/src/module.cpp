@@ -21,7 +21,7 @@
 #include "io/range_report_writer.hpp"
 #include "io/table_writer.hpp"
 #include "io/tolerance_report_writer.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "check_report_binding.hpp"
 #include "request_binding.hpp"
 

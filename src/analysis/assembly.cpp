@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace mechkin {
@@ -69,13 +70,58 @@ double PoseDistance(const SystemState& a, const SystemState& b, double length) {
   return d;
 }
 
-bool AssembleHintedBranch(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
-                          std::string* message) {
+namespace {
+
+// A revolute's angle (θ = atan2(g₁ᵀf₂, f₁ᵀf₂), the rotation driver's, constraints.md §3.9)
+// or a prismatic's slide along h₁, at pose s.
+double JointCoordinate(const SystemState& s, const Joint& j) {
+  const BodyKinematics& k1 = s.Kin(j.body1);
+  const BodyKinematics& k2 = s.Kin(j.body2);
+  const Vec3 h1 = k1.A * j.frame1.h;
+  if (j.type == JointType::Prismatic)
+    return ((k2.r[0] + k2.A * j.frame2.origin) - (k1.r[0] + k1.A * j.frame1.origin)).dot(h1);
+  const Vec3 f1 = k1.A * j.frame1.f, f2 = k2.A * j.frame2.f;
+  return std::atan2(h1.dot(f1.cross(f2)), f1.dot(f2));
+}
+
+// Turns (slides) body2 of joint j rigidly about (along) the joint's axis so that its
+// coordinate reads `value` (body1 the other way when body2 is ground): the start
+// of the hinted assembly is then already on the hinted side of every fold.
+void SetJointCoordinate(const Joint& j, double value, SystemState* s) {
+  const BodyKinematics& k1 = s->Kin(j.body1);
+  const Vec3 h = k1.A * j.frame1.h, o = k1.r[0] + k1.A * j.frame1.origin;
+  double delta = value - JointCoordinate(*s, j);
+  if (j.type == JointType::Revolute) delta = std::remainder(delta, 2 * M_PI);
+  const BodyIndex moved = j.body2 != kGround ? j.body2 : j.body1;
+  if (j.body2 == kGround) delta = -delta;
+  BodyKinematics& k = s->bodies[moved];
+  if (j.type == JointType::Prismatic) {
+    k.SetPose(k.r[0] + delta * h, k.p);
+    return;
+  }
+  const Vec4 turn = QuatFromAxisAngle(h, delta);
+  k.SetPose(o + CalcA(turn) * (k.r[0] - o), QuatMultiply(turn, k.p).normalized());
+}
+
+// Joints and drivers closed from pose s (min-norm Gauss–Newton).
+bool CloseAll(const ConstraintSystem& sys, const SolveOptions& rough, SystemState* s, int* iterations) {
+  const SolveSummary r = AssembleMinNorm(sys, AllRows(sys), rough, s);
+  *iterations += r.iterations;
+  return r.success;
+}
+
+// The joints with the hinted coordinates held (the drivers set aside), then the
+// joints and drivers again from there.
+// With `keep_drivers` the drivers stay too: a least-squares compromise between the
+// drivers and the hints (it cannot close exactly) that lands near the hinted branch.
+bool HeldThenClosed(const ConstraintSystem& sys, const SolveOptions& rough,
+                    const std::vector<std::pair<int, double>>& hints, bool keep_drivers, SystemState* s,
+                    int* iterations) {
   const Model& model = sys.model();
-  if (!model.analysis || model.analysis->branch_joints.empty()) return true;
   Model hinted = model;
-  hinted.drivers.clear();
-  for (const auto& [joint, value] : model.analysis->branch_joints) {
+  if (!keep_drivers) hinted.drivers.clear();
+  const size_t first_hint = hinted.drivers.size();
+  for (const auto& [joint, value] : hints) {
     const Joint& j = model.joints[joint];
     Driver d;
     d.name = "branch hint " + j.name;
@@ -87,22 +133,110 @@ bool AssembleHintedBranch(const ConstraintSystem& sys, const SolveOptions& solve
   const ConstraintSystem hsys(hinted, true);
   SystemState hs(hsys);
   hs.bodies = s->bodies;
-  for (size_t k = 0; k < hinted.drivers.size(); ++k)
-    hs.driver_values[k] = Jet::Constant(model.analysis->branch_joints[k].second);
+  for (size_t k = 0; k < first_hint; ++k) hs.driver_values[k] = s->driver_values[k];
+  for (size_t k = first_hint; k < hinted.drivers.size(); ++k) hs.driver_values[k] = Jet::Constant(hints[k - first_hint].second);
   AimRotationDrivers(hsys, &hs);
-  SolveOptions rough = solve;
-  rough.max_iterations = 100;
   const SolveSummary a = AssembleMinNorm(hsys, AllRows(hsys), rough, &hs);
   *iterations += a.iterations;
-  if (!a.success) {
-    *message = "the branch hint cannot be assembled (the joints cannot take the hinted coordinates): " + a.message;
+  if (!a.success && !keep_drivers) return false;
+  for (size_t b = 0; b < s->bodies.size(); ++b) s->bodies[b].SetPose(hs.bodies[b].r[0], hs.bodies[b].p);
+  return CloseAll(sys, rough, s, iterations);
+}
+
+// How far pose s is from the hints: Σ |coordinate − hint| (rad, or slide / size).
+double HintGap(const Model& model, const SystemState& s, const std::vector<std::pair<int, double>>& hints) {
+  double gap = 0;
+  for (const auto& [joint, value] : hints) {
+    const Joint& j = model.joints[joint];
+    const double d = JointCoordinate(s, j) - value;
+    gap += j.type == JointType::Revolute ? std::abs(std::remainder(d, 2 * M_PI)) : std::abs(d) / model.characteristic_length;
+  }
+  return gap;
+}
+
+// Signs of h₁·h₂ of the axis-carrying joints: an assembly that turns one over (a
+// joint mounted backwards) is not a branch of the mechanism (analysis/branches.hpp).
+std::vector<bool> AxesAlong(const Model& m, const SystemState& s) {
+  std::vector<bool> out;
+  for (const Joint& j : m.joints)
+    if (j.type == JointType::Revolute || j.type == JointType::Prismatic || j.type == JointType::Cylindrical ||
+        j.type == JointType::Screw)
+      out.push_back((s.Kin(j.body1).A * j.frame1.h).dot(s.Kin(j.body2).A * j.frame2.h) > 0);
+  return out;
+}
+
+// From pose s, four starts — the hinted joints' bodies turned to the hints then the
+// hints held, the same start closed directly, the pose itself with the hints held,
+// and the turned start with the hints and the drivers held together — and the
+// assembly nearest the hints among those that close with every axis as it was.
+bool HintedAssembly(const ConstraintSystem& sys, const SolveOptions& solve,
+                    const std::vector<std::pair<int, double>>& hints, SystemState* s, int* iterations,
+                    std::string* message) {
+  const Model& model = sys.model();
+  SolveOptions rough = solve;
+  rough.max_iterations = 100;
+  std::optional<SystemState> best;
+  double best_gap = 0;
+  const std::vector<bool> axes = AxesAlong(model, *s);
+  for (int start = 0; start < 4; ++start) {
+    SystemState t = *s;
+    if (start != 2)
+      for (const auto& [joint, value] : hints) SetJointCoordinate(model.joints[joint], value, &t);
+    const bool closed = start == 1 ? CloseAll(sys, rough, &t, iterations)
+                                   : HeldThenClosed(sys, rough, hints, start == 3, &t, iterations);
+    if (!closed || AxesAlong(model, t) != axes) continue;
+    const double gap = HintGap(model, t, hints);
+    if (!best || gap < best_gap) best = t, best_gap = gap;
+  }
+  if (!best) {
+    *message = "the mechanism cannot be assembled on the hinted branch at the drivers' design values "
+               "(the joints cannot take the hinted coordinates)";
     return false;
   }
-  for (size_t b = 0; b < s->bodies.size(); ++b) s->bodies[b].SetPose(hs.bodies[b].r[0], hs.bodies[b].p);
-  const SolveSummary r = AssembleMinNorm(sys, AllRows(sys), rough, s);
-  *iterations += r.iterations;
-  if (!r.success) *message = "the mechanism cannot be assembled on the hinted branch at the drivers' design values";
-  return r.success;
+  *s = *best;
+  return true;
+}
+
+}  // namespace
+
+bool AssembleHintedBranch(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
+                          std::string* message) {
+  const Model& model = sys.model();
+  if (!model.analysis || model.analysis->branch_joints.empty()) return true;
+  return HintedAssembly(sys, solve, model.analysis->branch_joints, s, iterations, message);
+}
+
+// The other closure at joint J: hinted assemblies at J's coordinate ± 10°, ± 20° …
+// (± 5 %, 10 % … of the mechanism's size for a slide), the first that lands on a
+// pose with another coordinate of J.
+bool AssembleFlippedBranch(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
+                           std::string* message) {
+  const Model& model = sys.model();
+  if (!model.analysis) return true;
+  const double L = model.characteristic_length;
+  for (int joint : model.analysis->branch_flips) {
+    const Joint& j = model.joints[joint];
+    const bool turn = j.type == JointType::Revolute;
+    const double c0 = JointCoordinate(*s, j), step = turn ? 10 * M_PI / 180 : 0.05 * L;
+    bool flipped = false;
+    for (int k = 1; k <= (turn ? 18 : 40) && !flipped; ++k)
+      for (int sign : {1, -1}) {
+        SystemState t = *s;
+        std::string why;
+        if (!HintedAssembly(sys, solve, {{joint, c0 + sign * k * step}}, &t, iterations, &why)) continue;
+        const double d = turn ? std::remainder(JointCoordinate(t, j) - c0, 2 * M_PI) : (JointCoordinate(t, j) - c0) / L;
+        if (std::abs(d) > 1e-6 && PoseDistance(t, *s, L) > 1e-6) {
+          *s = t;
+          flipped = true;
+          break;
+        }
+      }
+    if (!flipped) {
+      *message = "'flip' of joint '" + j.name + "': no other closure of its loop was found at the drivers' design values";
+      return false;
+    }
+  }
+  return true;
 }
 
 namespace {

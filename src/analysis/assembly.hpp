@@ -33,6 +33,11 @@ double PoseDistance(const SystemState& a, const SystemState& b, double length);
 /// without hints.
 bool AssembleHintedBranch(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
                           std::string* message);
+/// With `analysis.branch` flips: for each named joint the other closure of its loop
+/// (the nearest assembly, from hinted ones at its coordinate ± 10°, ± 20° …, whose
+/// coordinate of that joint differs). True without flips.
+bool AssembleFlippedBranch(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
+                           std::string* message);
 bool ContinueToStart(KinematicsWorkspace& ws, double start, const SolveOptions& solve, SystemState* s,
                      int* iterations, std::string* message);
 

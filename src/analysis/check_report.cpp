@@ -1,7 +1,9 @@
 #include "analysis/check_report.hpp"
 
 #include <algorithm>
+#include <cmath>
 
+#include "analysis/assemble_model.hpp"
 #include "mobility/grubler.hpp"
 
 namespace mechkin {
@@ -79,6 +81,26 @@ void AddGeometry(const Model& m, CheckReport* r) {
   r->angle_unit = m.units.angle_name;
 }
 
+void AddAssembly(const Model& m, CheckReport* r) {
+  if (!m.assembly || !m.assembly->assembled) return;
+  const AssemblyRecord& rec = *m.assembly;
+  const double len = 1 / m.units.length_to_si, ang = 1 / m.units.angle_to_si;
+  AssemblySection a;
+  a.iterations = rec.iterations;
+  for (const AssemblyLoop& loop : rec.loops) {
+    AssemblySection::Loop l{m.joints[loop.joint].name, LoopName(m, loop), {}, loop.error_before * len,
+                            loop.error_after * len};
+    for (int j : loop.path) l.path.push_back(m.joints[j].name);
+    a.loops.push_back(std::move(l));
+  }
+  for (int b = 0; b < m.num_bodies(); ++b) {
+    const double turn = 2 * std::acos(std::min(1.0, std::abs(m.bodies[b].euler.dot(rec.guess_euler[b]))));
+    a.moves.push_back({m.bodies[b].name, rec.sketched[b], (m.bodies[b].position - rec.guess_position[b]).norm() * len,
+                       turn * ang});
+  }
+  r->assembly = std::move(a);
+}
+
 }  // namespace
 
 CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
@@ -112,6 +134,7 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
     r.warnings.push_back({"/joints", r.mobility->verdict, "fix the joints before adding or removing drivers"});
   AddExpectations(m, &r);
   AddGeometry(m, &r);
+  AddAssembly(m, &r);
   return r;
 }
 

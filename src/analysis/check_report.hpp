@@ -11,7 +11,7 @@
 
 #include "analysis/branches.hpp"
 #include "mobility/mobility.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 
@@ -43,6 +43,17 @@ struct BodyGeometry {
   std::vector<AxisAngle> angles;
 };
 
+/// How a file placed by its markers was assembled (analysis/assemble_model.hpp), in
+/// the file's units: per loop the closure error before and after, and per body how
+/// far it moved from its guess (the sketch or the tree placement).
+struct AssemblySection {
+  struct Loop { std::string joint, name; std::vector<std::string> path; double error_before, error_after; };
+  struct Move { std::string body; bool sketched; double distance, angle; };
+  std::vector<Loop> loops;
+  std::vector<Move> moves;
+  int iterations = 0;
+};
+
 struct CheckReport {
   std::string file;
   bool valid = false;
@@ -58,6 +69,7 @@ struct CheckReport {
   std::vector<Parameter> parameters;        // resolved values
   std::string length_unit, angle_unit;      // of geometry and parameters
   std::optional<BranchCount> branches;      // with `check --branches`
+  std::optional<AssemblySection> assembly;  // files placed by markers only
   /// Valid and every expectation held.
   bool ok() const;
 };

@@ -483,6 +483,7 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     rep.stop = StopKind::AssemblyFailed;
     if (!AssembleDesignPose(sys, solve, &s, &rep.assembly_iterations, &rep.message)) return rep;
     if (!AssembleHintedBranch(sys, solve, &s, &rep.assembly_iterations, &rep.message)) return rep;
+    if (!AssembleFlippedBranch(sys, solve, &s, &rep.assembly_iterations, &rep.message)) return rep;
     const RowSelection selection = SelectRows(sys, s);
     rep.set_aside = selection.set_aside_names;
     rep.stop = StopKind::Refused;

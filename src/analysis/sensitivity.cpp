@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 

@@ -16,7 +16,7 @@
 #include "analysis/kinematic_analysis.hpp"
 #include "analysis/motion.hpp"
 #include "analysis/run_request.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 

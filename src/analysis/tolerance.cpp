@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 

@@ -162,6 +162,32 @@ json ParametersJson(const std::vector<Parameter>& parameters) {
   return j;
 }
 
+// "  assembly (from the markers, 7 Newton iterations):" then per loop and per body.
+void PrintAssembly(const CheckReport& r, std::ostream& out) {
+  if (!r.assembly) return;
+  const AssemblySection& a = *r.assembly;
+  out << "  assembly (from the markers; " << a.iterations << " Newton iterations, all loops at once):\n";
+  for (const auto& l : a.loops)
+    out << "    loop " << l.name << " closed by " << l.joint << ": error " << Short(l.error_before) << " -> "
+        << Short(l.error_after) << " " << r.length_unit << "\n";
+  for (const auto& m : a.moves)
+    out << "    " << m.body << (m.sketched ? " (sketch)" : " (tree)") << ": moved " << Short(m.distance) << " "
+        << r.length_unit << ", turned " << Short(m.angle) << " " << r.angle_unit << "\n";
+}
+
+json AssemblyJson(const CheckReport& r) {
+  const AssemblySection& a = *r.assembly;
+  json loops = json::array(), moves = json::array();
+  for (const auto& l : a.loops)
+    loops.push_back({{"joint", l.joint}, {"bodies", l.name}, {"path", l.path}, {"error_before", l.error_before},
+                     {"error_after", l.error_after}});
+  for (const auto& m : a.moves)
+    moves.push_back({{"body", m.body}, {"guess", m.sketched ? "sketch" : "tree"}, {"moved", m.distance},
+                     {"turned", m.angle}});
+  return {{"iterations", a.iterations}, {"length_unit", r.length_unit}, {"angle_unit", r.angle_unit},
+          {"loops", loops}, {"bodies", moves}};
+}
+
 void PrintSummary(const CheckReport& r, std::ostream& out) {
   out << (r.name.empty() ? "(unnamed)" : r.name) << "\n";
   out << "  bodies: " << r.bodies << " moving\n  joints: ";
@@ -179,6 +205,7 @@ void PrintSummary(const CheckReport& r, std::ostream& out) {
         << r.branches->restarts << " random restarts, " << r.branches->converged
         << " assembled; joints mounted backwards not counted)\n";
   PrintGeometry(r, out);
+  PrintAssembly(r, out);
 }
 
 }  // namespace
@@ -207,6 +234,7 @@ json CheckReportJson(const CheckReport& r) {
     j["branches"] = {{"count", r.branches->branches}, {"restarts", r.branches->restarts},
                      {"converged", r.branches->converged}, {"distances_from_design", r.branches->distances}};
   j["parameters"] = ParametersJson(r.parameters);
+  if (r.assembly) j["assembly"] = AssemblyJson(r);
   return j;
 }
 

@@ -21,10 +21,12 @@ std::optional<Model> Compiler::Run() {
   CompileHeader();
   CompileParameters();
   CompileUnits();
+  by_markers_ = spec_.UsesMarkers();
   out_.SetPlace(Section::Ground);
   CompileMarkers(kGround, spec_.ground_markers);
   for (const BodySpec& b : spec_.bodies) Place(Section::Bodies, b.pointer), CompileBody(b);
   for (const JointSpec& j : spec_.joints) Place(Section::Joints, j.pointer), CompileJoint(j);
+  if (by_markers_) PlaceByMarkers();
   for (const DriverSpec& d : spec_.drivers) Place(Section::Drivers, d.pointer), CompileDriver(d);
   CompileAnalysis();
   for (const OutputSpec& o : spec_.outputs) Place(Section::Outputs, o.pointer), CompileOutput(o);
@@ -265,26 +267,36 @@ void Compiler::CompileAnalysis() {
   if (a.branch && model_.analysis) CompileBranch(*a.branch, &*model_.analysis);
 }
 
-// "branch": {"joints": {"D": -40}}: revolute angles / prismatic slides from the design pose.
+// "branch": {"joints": {"D": -40}}: revolute angles / prismatic slides from the design
+// pose (a marker joint: from its markers' coincidence); "flip": ["D"]: the other closure.
 void Compiler::CompileBranch(const BranchSpec& b, Analysis* an) {
   for (const auto& [name, value] : b.joints) {
-    const std::string& p = value.pointer;
-    const auto it = joint_index_.find(name);
-    if (it == joint_index_.end() || it->second < 0) {
-      std::vector<std::string> names;
-      for (const auto& kv : joint_index_) names.push_back(kv.first);
-      const std::string g = DidYouMean(name, names);
-      Error(p, "unknown joint '" + Shorten(name) + "'", g.empty() ? "valid joints: " + Join(names) : "did you mean '" + g + "'?");
-      continue;
-    }
-    const JointType t = model_.joints[it->second].type;
-    if (t != JointType::Revolute && t != JointType::Prismatic) {
-      Error(p, "branch hints are revolute angles or prismatic slides; '" + name + "' is " + JointTypeName(t),
-            "hint a revolute or prismatic joint of the branch");
-      continue;
-    }
-    if (auto v = Value(value)) an->branch_joints.emplace_back(it->second, *v * (t == JointType::Revolute ? angle_ : length_));
+    const auto joint = BranchJoint(name, value.pointer);
+    if (!joint) continue;
+    const JointType t = model_.joints[*joint].type;
+    if (auto v = Value(value)) an->branch_joints.emplace_back(*joint, *v * (t == JointType::Revolute ? angle_ : length_));
   }
+  for (const auto& [name, p] : b.flip)
+    if (auto j = BranchJoint(name, p)) an->branch_flips.push_back(*j);
+}
+
+// A joint a branch may be named by: a revolute or prismatic joint of the file.
+std::optional<int> Compiler::BranchJoint(const std::string& name, const std::string& p) {
+  const auto it = joint_index_.find(name);
+  if (it == joint_index_.end() || it->second < 0) {
+    std::vector<std::string> names;
+    for (const auto& kv : joint_index_) names.push_back(kv.first);
+    const std::string g = DidYouMean(name, names);
+    Error(p, "unknown joint '" + Shorten(name) + "'", g.empty() ? "valid joints: " + Join(names) : "did you mean '" + g + "'?");
+    return std::nullopt;
+  }
+  const JointType t = model_.joints[it->second].type;
+  if (t != JointType::Revolute && t != JointType::Prismatic) {
+    Error(p, "branch hints are revolute angles or prismatic slides; '" + name + "' is " + JointTypeName(t),
+          "hint a revolute or prismatic joint of the branch");
+    return std::nullopt;
+  }
+  return it->second;
 }
 
 void Compiler::CompileExpect() {

@@ -11,7 +11,9 @@ namespace mechkin {
 void Compiler::CompileBody(const BodySpec& b) {
   Body body;
   const auto& name = b.name;
-  auto pos = LengthVector(b.position);
+  // In a file placed by markers a body without a position is placed by compile.
+  const bool sketched = b.position.has_value();
+  auto pos = !sketched && by_markers_ ? std::optional<Vec3>(Vec3::Zero()) : LengthVector(b.position);
   body.euler = Vec4(1, 0, 0, 0);
   bool ok = name && pos;
   if (b.orientation) {
@@ -45,6 +47,7 @@ void Compiler::CompileBody(const BodySpec& b) {
   }
   body_index_[body.name] = static_cast<BodyIndex>(model_.bodies.size());
   model_.bodies.push_back(body);
+  sketched_.push_back(sketched);
   CompileMarkers(body_index_[body.name], b.markers);
 }
 

@@ -61,7 +61,8 @@ void Compiler::CompileMarkerJoint(const JointSpec& j, JointType type, const std:
   if (!ok) return;
   const auto [r1, A1] = Pose(*body1);
   const auto [r2, A2] = Pose(*body2);
-  if (type == JointType::Universal) {
+  const bool posed = HasFilePose(*body1) && HasFilePose(*body2);  // else the assembly places them
+  if (type == JointType::Universal && posed) {
     const double c = (A1 * m1->h).dot(A2 * m2->h);
     if (std::abs(c) > 1e-6) {
       Error(ptr + "/marker2",
@@ -70,6 +71,11 @@ void Compiler::CompileMarkerJoint(const JointSpec& j, JointType type, const std:
             "give marker2 an axis perpendicular to marker1's (the cross axes of a Hooke joint are at 90 deg)");
       return;
     }
+  }
+  if (type == JointType::Distance && !posed && !j.length) {
+    Error(ptr, "distance link '" + *name + "' has no 'length' and a body without a position",
+          "give the link's \"length\" (or positions of both bodies, whose distance is then the length)");
+    return;
   }
   if (type == JointType::Distance &&
       !CompileDistanceLength(j, r1 + A1 * m1->origin, r2 + A2 * m2->origin, true, "/marker2", &joint))

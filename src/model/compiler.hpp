@@ -61,6 +61,7 @@ class Compiler {
   void CompileUnits();
   void CompileAnalysis();
   void CompileBranch(const BranchSpec& b, Analysis* an);
+  std::optional<int> BranchJoint(const std::string& name, const std::string& pointer);
   void CompileExpect();
   void CompileGravity();
   void CompileView();
@@ -81,6 +82,12 @@ class Compiler {
   std::optional<JointFrame> Marker(BodyIndex body, const std::optional<std::string>& name, const std::string& ptr);
   void CompileMarkerJoint(const JointSpec& j, JointType type, const std::string* name, std::optional<BodyIndex> body1,
                           std::optional<BodyIndex> body2);
+  /// Ground, or a body whose position the file gives.
+  bool HasFilePose(BodyIndex b) const { return b == kGround || sketched_[b]; }
+
+  // Placement by markers (compile_placement.cpp): the spanning tree.
+  void PlaceByMarkers();
+  void PlaceChild(int joint, BodyIndex parent);
 
   // Joints and drivers (compile_joints.cpp).
   void CompileJoint(const JointSpec& j);
@@ -164,6 +171,8 @@ class Compiler {
   std::set<std::string> driver_names_, output_names_;
   std::vector<std::string> driver_pointers_;  // per model driver, its place in the file
   double length_ = 1, angle_ = 1;
+  bool by_markers_ = false;       // some joint names markers: positions are optional guesses
+  std::vector<bool> sketched_;    // per model body: the file gives its position
 };
 
 }  // namespace mechkin

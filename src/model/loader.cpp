@@ -35,7 +35,7 @@ bool ReadStream(int fd, std::string* text, std::string* why, int timeout_ms) {
 }  // namespace
 
 // The reader's and compile's diagnostics merge into the file's order.
-LoadResult LoadMechanismText(const std::string& text, const std::string& source_name,
+LoadResult LoadTextUnassembled(const std::string& text, const std::string& source_name,
                              const ParameterOverrides& overrides) {
   LoadResult result;
   SpecReadResult read = ReadMechanismSpec(text, source_name);
@@ -48,7 +48,7 @@ LoadResult LoadMechanismText(const std::string& text, const std::string& source_
   return result;
 }
 
-LoadResult WithParameters(const Model& model, const ParameterOverrides& overrides) {
+LoadResult WithParametersUnassembled(const Model& model, const ParameterOverrides& overrides) {
   if (!model.spec) {
     LoadResult result;
     result.errors.push_back({"", "this model was not compiled from a spec", "load it with LoadMechanismFile"});
@@ -61,7 +61,7 @@ LoadResult WithParameters(const Model& model, const ParameterOverrides& override
   return Compile(model.spec, merged, model.expressions);
 }
 
-LoadResult LoadMechanismFile(const std::string& path, const ParameterOverrides& overrides) {
+LoadResult LoadFileUnassembled(const std::string& path, const ParameterOverrides& overrides) {
   LoadResult result;
   auto fail = [&](const std::string& msg, const std::string& fix) {
     result.errors.push_back({"", msg, fix});
@@ -85,7 +85,7 @@ LoadResult LoadMechanismFile(const std::string& path, const ParameterOverrides& 
   const bool ok = ReadStream(fd, &text, &why, 10000);
   if (!standard_input) ::close(fd);
   if (!ok) return fail("cannot read '" + path + "': " + why, "give a complete mechanism JSON file");
-  return LoadMechanismText(text, standard_input ? "<stdin>" : path, overrides);
+  return LoadTextUnassembled(text, standard_input ? "<stdin>" : path, overrides);
 }
 
 }  // namespace mechkin

@@ -1,5 +1,7 @@
 // Loading format-v1 mechanism files: read the spec (src/spec/reader.hpp), then
-// compile it (model/compile.hpp).
+// compile it (model/compile.hpp) — WITHOUT closing the loops of a file placed by
+// markers (that needs the equations: analysis/load.hpp is the front door every
+// caller uses; these are its model-level half).
 //
 // Every problem of a file is collected (not just the first), each naming the
 // JSON pointer of the offending value, what is wrong and how to fix it. The
@@ -20,11 +22,11 @@ namespace mechkin {
 /// Largest file the loader reads (bytes).
 constexpr std::size_t kMaxFileBytes = 256u << 20;
 
-LoadResult LoadMechanismFile(const std::string& path, const ParameterOverrides& overrides = {});
-LoadResult LoadMechanismText(const std::string& text, const std::string& source_name,
+LoadResult LoadFileUnassembled(const std::string& path, const ParameterOverrides& overrides = {});
+LoadResult LoadTextUnassembled(const std::string& text, const std::string& source_name,
                              const ParameterOverrides& overrides = {});
 /// The model compiled again from its spec with other parameter values (earlier
 /// overrides kept, these added).
-LoadResult WithParameters(const Model& model, const ParameterOverrides& overrides);
+LoadResult WithParametersUnassembled(const Model& model, const ParameterOverrides& overrides);
 
 }  // namespace mechkin

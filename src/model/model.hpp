@@ -123,6 +123,31 @@ struct Analysis {
   // "branch": {"joints": {J: value}}: approximate joint coordinates (SI, from the
   // design pose) of the assembly branch wanted, at the drivers' design values.
   std::vector<std::pair<int, double>> branch_joints;
+  // "branch": {"flip": [J, ...]}: take the other closure of the loop at each joint
+  // (the nearest assembly whose coordinate of J differs).
+  std::vector<int> branch_flips;
+};
+
+/// One loop of a file placed by its markers: a joint outside the spanning tree
+/// and the tree joints of the path it closes.
+struct AssemblyLoop {
+  int joint = -1;          // the joint closing the loop
+  std::vector<int> path;   // tree joints from body1 of `joint` to body2, in order
+  // Largest miss of the loop's joints (m; an angle miss counts as L·angle), at the
+  // starting pose (tree placement or sketch) and after the assembly.
+  double error_before = 0, error_after = 0;
+};
+
+/// How compile (the spanning tree) and the assembly (analysis/assemble_model.hpp:
+/// the loop closures) placed the bodies of a file whose joints name markers.
+struct AssemblyRecord {
+  std::vector<int> tree_joint;   // per body: the joint that placed it (-1: none, a root)
+  std::vector<bool> sketched;    // per body: its position was given (the starting guess)
+  std::vector<Vec3> guess_position;  // per body: the starting pose (sketch or tree placement)
+  std::vector<Vec4> guess_euler;
+  std::vector<AssemblyLoop> loops;
+  int iterations = 0;             // Newton iterations of the closure (all loops at once)
+  bool assembled = false;         // the loops were closed (the model's poses are the closed ones)
 };
 
 /// A named number of the file ("parameters"), in the units of the places that use it.
@@ -168,6 +193,8 @@ struct Model {
   std::shared_ptr<const MechanismSpec> spec;
   /// The spec's expressions parsed once, for compiling its variants without parsing.
   std::shared_ptr<const ExpressionCache> expressions;
+  /// Set for a file whose joints name markers: the bodies were placed from them.
+  std::optional<AssemblyRecord> assembly;
 
   const Parameter* FindParameter(const std::string& name) const;
 

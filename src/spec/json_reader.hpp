@@ -75,7 +75,9 @@ void ReadAnalysis(JsonReader& rd, const json& doc, MechanismSpec* spec);
 void ReadExpect(JsonReader& rd, const json& doc, MechanismSpec* spec);
 void ReadGravity(JsonReader& rd, const json& doc, MechanismSpec* spec);
 void ReadView(JsonReader& rd, const json& doc, MechanismSpec* spec);
-void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, MechanismSpec* spec);
+void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, bool by_markers, MechanismSpec* spec);
+/// Some joint of the document names "marker1" or "marker2".
+bool JointsUseMarkers(const json& doc);
 void ReadJoint(JsonReader& rd, const json& j, const std::string& ptr, MechanismSpec* spec);
 void ReadDriver(JsonReader& rd, const json& d, const std::string& ptr, MechanismSpec* spec);
 void ReadOutput(JsonReader& rd, const json& o, const std::string& ptr, MechanismSpec* spec);

@@ -110,9 +110,12 @@ std::optional<ShapeSpec> ReadShape(JsonReader& rd, const json& o, const std::str
 
 }  // namespace
 
-void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, MechanismSpec* spec) {
+// In a file whose joints name markers, "position" is an optional starting guess.
+void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, bool by_markers, MechanismSpec* spec) {
+  const std::vector<std::string> required =
+      by_markers ? std::vector<std::string>{"name"} : std::vector<std::string>{"name", "position"};
   if (!rd.CheckObject(b, ptr, {"name", "description", "position", "orientation", "inertia", "shape", "markers"},
-                      {"name", "position"}, "a body"))
+                      required, "a body"))
     return;
   BodySpec body;
   body.pointer = ptr;

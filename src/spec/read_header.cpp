@@ -61,17 +61,38 @@ void ReadParameter(JsonReader& rd, const std::string& name, const json& v, Mecha
 
 void ReadBranch(JsonReader& rd, const json& b, AnalysisSpec* an) {
   const std::string ptr = "/analysis/branch";
-  if (!rd.CheckObject(b, ptr, {"joints"}, {"joints"}, "'branch'")) return;
-  if (!b.contains("joints")) return;
-  const json& joints = b.at("joints");
-  if (!joints.is_object()) {
-    rd.Error(ptr + "/joints", "'joints' must be an object {\"joint name\": coordinate}, not " + TypeName(joints));
+  if (!rd.CheckObject(b, ptr, {"joints", "flip"}, {}, "'branch'")) return;
+  if (!b.contains("joints") && !b.contains("flip")) {
+    rd.Error(ptr + "/joints", "missing key 'joints' in 'branch'", "add it");  // (or "flip")
     return;
   }
   BranchSpec branch;
-  for (const auto& item : joints.items()) {
-    const std::string p = ptr + "/joints/" + EscapeToken(item.key());
-    branch.joints.emplace_back(item.key(), rd.ScalarValue(item.value(), p, "the hint"));
+  if (b.contains("joints")) {
+    const json& joints = b.at("joints");
+    if (!joints.is_object()) {
+      rd.Error(ptr + "/joints", "'joints' must be an object {\"joint name\": coordinate}, not " + TypeName(joints));
+      return;
+    }
+    for (const auto& item : joints.items()) {
+      const std::string p = ptr + "/joints/" + EscapeToken(item.key());
+      branch.joints.emplace_back(item.key(), rd.ScalarValue(item.value(), p, "the hint"));
+    }
+  }
+  if (b.contains("flip")) {
+    const json& flip = b.at("flip");
+    if (!flip.is_array()) {
+      rd.Error(ptr + "/flip", "'flip' must be an array of joint names, not " + TypeName(flip),
+               "e.g. \"flip\": [\"rocker_bearing\"]");
+      return;
+    }
+    for (size_t k = 0; k < flip.size(); ++k) {
+      const std::string p = ptr + "/flip/" + std::to_string(k);
+      if (!flip[k].is_string()) {
+        rd.Error(p, "a joint name must be a string, not " + TypeName(flip[k]), "name a revolute or prismatic joint");
+        continue;
+      }
+      branch.flip.emplace_back(flip[k].get<std::string>(), p);
+    }
   }
   an->branch = std::move(branch);
 }

@@ -88,6 +88,13 @@ void DriverKeys(JsonReader& rd, const std::optional<std::string>& type, bool by_
 
 }  // namespace
 
+bool JointsUseMarkers(const json& doc) {
+  if (!doc.contains("joints") || !doc.at("joints").is_array()) return false;
+  for (const json& j : doc.at("joints"))
+    if (j.is_object() && (j.contains("marker1") || j.contains("marker2"))) return true;
+  return false;
+}
+
 void ReadJoint(JsonReader& rd, const json& jj, const std::string& ptr, MechanismSpec* spec) {
   if (!jj.is_object()) {
     rd.Error(ptr, "a joint must be a JSON object, not " + TypeName(jj));

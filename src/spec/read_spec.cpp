@@ -21,8 +21,9 @@ SpecReadResult ReadMechanismSpec(const std::string& text, const std::string& sou
   spec_reader::ReadUnits(rd, doc, &spec);
   spec_reader::ReadGround(rd, doc, &spec);
   using spec_reader::ReadArray;
+  const bool by_markers = spec_reader::JointsUseMarkers(doc);
   ReadArray(rd, doc, "bodies", "body", Section::Bodies,
-            [&](const json& e, const std::string& p) { spec_reader::ReadBody(rd, e, p, &spec); });
+            [&](const json& e, const std::string& p) { spec_reader::ReadBody(rd, e, p, by_markers, &spec); });
   ReadArray(rd, doc, "joints", "joint", Section::Joints,
             [&](const json& e, const std::string& p) { spec_reader::ReadJoint(rd, e, p, &spec); });
   ReadArray(rd, doc, "drivers", "driver", Section::Drivers,

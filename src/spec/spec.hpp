@@ -160,6 +160,7 @@ struct ParameterSpec {
 
 struct BranchSpec {
   std::vector<std::pair<std::string, Scalar>> joints;  // joint name, approximate coordinate
+  std::vector<std::pair<std::string, std::string>> flip;  // joint name, its JSON pointer: the other closure there
 };
 
 struct AnalysisSpec {
@@ -200,6 +201,13 @@ struct MechanismSpec {
   std::optional<Vector3Spec> gravity;
   std::vector<LoadSpec> loads;
   std::optional<ViewSpec> view;
+  /// Some joint names "marker1"/"marker2": bodies' positions are then optional
+  /// starting guesses (a sketch), and compile places the bodies from the markers.
+  bool UsesMarkers() const {
+    for (const JointSpec& j : joints)
+      if (j.marker1 || j.marker2) return true;
+    return false;
+  }
   /// False when the reader reported errors: compile then reports the values'
   /// errors too but builds no model.
   bool valid = true;

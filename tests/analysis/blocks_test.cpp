@@ -7,7 +7,7 @@
 #include <map>
 
 #include "analysis/kinematic_analysis.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "analysis/motion.hpp"
 #include "test_files.hpp"
 #include "kinematics/block_structure.hpp"

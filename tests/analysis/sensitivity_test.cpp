@@ -9,7 +9,7 @@
 #include <map>
 
 #include "analysis/motion.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 namespace {

@@ -13,7 +13,7 @@
 #include <cmath>
 
 #include "analysis/tolerance.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 namespace {

@@ -75,7 +75,7 @@ TEST(Joints, BundledMechanismsAreAssembledAtTheDesignPose) {
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms")) {
     if (entry.path().extension() != ".json") continue;
-    const LoadResult r = LoadMechanismFile(entry.path().string());
+    const LoadResult r = LoadFileUnassembled(entry.path().string());
     ASSERT_TRUE(r.ok()) << entry.path();
     const ConstraintSystem sys(*r.model, false);
     const SystemState s(sys);
@@ -90,7 +90,7 @@ TEST(Joints, BundledMechanismsAreAssembledAtTheDesignPose) {
 
 // The fixed-pattern sparse Jacobian equals the dense one, in both versions.
 TEST(System, SparseJacobianMatchesDense) {
-  const LoadResult r = LoadMechanismFile(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/spatial-slider-crank.json");
+  const LoadResult r = LoadFileUnassembled(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/spatial-slider-crank.json");
   ASSERT_TRUE(r.ok());
   const ConstraintSystem sys(*r.model, true);
   SystemState s(sys);

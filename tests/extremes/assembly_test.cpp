@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/kinematic_analysis.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "../test_files.hpp"
 #include "analysis/motion.hpp"
 

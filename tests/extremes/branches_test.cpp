@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/kinematic_analysis.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "analysis/motion.hpp"
 #include "test_files.hpp"
 

@@ -8,7 +8,7 @@
 #include "mobility/grubler.hpp"
 #include "io/check_report_writer.hpp"
 #include "mobility/mobility.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "../test_files.hpp"
 
 namespace mechkin {

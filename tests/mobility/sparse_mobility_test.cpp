@@ -9,7 +9,7 @@
 
 #include "analysis/motion.hpp"
 #include "mobility/mobility.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "../test_files.hpp"
 
 namespace mechkin {

@@ -11,7 +11,7 @@
 
 #include "analysis/motion.hpp"
 #include "model/compile.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "spec/reader.hpp"
 #include "test_files.hpp"
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 namespace {

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/motion.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "test_files.hpp"
 
 namespace mechkin {

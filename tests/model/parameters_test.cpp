@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "test_files.hpp"
 
 namespace mechkin {

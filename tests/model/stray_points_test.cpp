@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <random>
 
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "model/stray_points.hpp"
 
 namespace mechkin {

@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "analysis/speed_accuracy.hpp"
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 #include "io/bench_report.hpp"
 #include "io/output_file.hpp"
 

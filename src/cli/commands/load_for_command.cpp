@@ -4,7 +4,7 @@
 
 #include "io/output_file.hpp"
 
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "model/loader.hpp"
+#include "analysis/load.hpp"
 
 namespace mechkin {
 
