@@ -7,12 +7,30 @@
 
 namespace mechkin {
 
+namespace {
+
+Vec3 DesignPoint(const Model& m, BodyIndex b, const Vec3& s) {
+  return b == kGround ? s : Vec3(m.bodies[b].position + CalcA(m.bodies[b].euler) * s);
+}
+Vec3 DesignVector(const Model& m, BodyIndex b, const Vec3& v) {
+  return b == kGround ? v : Vec3(CalcA(m.bodies[b].euler) * v);
+}
+
+}  // namespace
+
+// A joint on markers measures from the markers' coincidence, so the pose drawn has
+// the coordinate it shows: θ = atan2(g_iᵀf_j, f_iᵀf_j) (constraints.md §3.9) in
+// (−π, π], or the slide h_iᵀd_ij (§3.8). The assembly then keeps the drawn branch.
 double DesignDriverValue(const Model& m, const Driver& d) {
-  if (d.kind != DriverKind::Distance) return 0;
-  auto global = [&](BodyIndex b, const Vec3& s) -> Vec3 {
-    return b == kGround ? s : Vec3(m.bodies[b].position + CalcA(m.bodies[b].euler) * s);
-  };
-  return (global(d.body2, d.point2) - global(d.body1, d.point1)).norm();
+  if (d.kind == DriverKind::Distance)
+    return (DesignPoint(m, d.body2, d.point2) - DesignPoint(m, d.body1, d.point1)).norm();
+  if (d.joint < 0 || !m.joints[d.joint].on_markers) return 0;  // frames from the design pose: 0 there
+  if (d.kind == DriverKind::JointRotation) {
+    const Vec3 fj = DesignVector(m, d.body2, d.frame2.f);
+    return std::atan2(DesignVector(m, d.body1, d.frame1.g).dot(fj), DesignVector(m, d.body1, d.frame1.f).dot(fj));
+  }
+  return DesignVector(m, d.body1, d.frame1.h)
+      .dot(DesignPoint(m, d.body2, d.frame2.origin) - DesignPoint(m, d.body1, d.frame1.origin));
 }
 
 void AimRotationDrivers(const ConstraintSystem& sys, SystemState* s) {

@@ -11,8 +11,10 @@
 
 namespace mechkin {
 
-/// The value a driver has at the design pose: angles and slides are 0 there
-/// (format v1); a distance driver gives the design distance itself.
+/// The value a driver has at the design pose: angles and slides of joints given in
+/// global coordinates are 0 there (format v1); those of a joint on markers are its
+/// coordinate in the pose drawn (0 where the markers coincide); a distance driver
+/// gives the design distance itself.
 double DesignDriverValue(const Model& model, const Driver& driver);
 /// Points the multi-turn angle of rotation drivers at their target f(t).
 void AimRotationDrivers(const ConstraintSystem& sys, SystemState* s);

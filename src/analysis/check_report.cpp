@@ -123,6 +123,7 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   std::sort(r.joints.begin(), r.joints.end());  // the JSON object's key order
   r.grubler = CalcGrublerCount(m);
   r.dof_after_drivers_count = r.grubler - r.drivers;
+  r.planar = FindPlanarStructure(m);
   r.mobility = CalcMobility(m);
   if (r.mobility->singular_lost > 0)
     r.warnings.push_back({"/drivers",

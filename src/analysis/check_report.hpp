@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/branches.hpp"
+#include "mobility/grubler.hpp"
 #include "mobility/mobility.hpp"
 #include "analysis/load.hpp"
 
@@ -63,6 +64,7 @@ struct CheckReport {
   std::vector<std::pair<std::string, int>> joints;  // type name → count, in first-seen order
   int grubler = 0;
   int dof_after_drivers_count = 0;  // Grübler count − drivers
+  std::optional<PlanarStructure> planar;  // a planar mechanism: its plane and planar count
   std::optional<MobilityReport> mobility;
   std::vector<ExpectationResult> expectations;
   std::vector<BodyGeometry> geometry;       // per moving body with two or more joints

@@ -232,10 +232,10 @@ void MotionLayout::AddRated(Quantity q, const std::string& subject, int index, c
   if (options_.order >= 3) columns_.push_back({name + "_t", unit + "/s", subject, q, index, component, 1});
 }
 
-// Forces, in the file's units (force = mass × length / s², torque = force × length) or SI.
+// Forces, in the file's units (its named force and torque units, else force = mass ×
+// length / s² and torque = force × length) or SI.
 void MotionLayout::AddForces(const Model& model) {
-  Units u = model.units;
-  if (options_.si) u.mass_name = "kg", u.length_name = "m";
+  const Units u = model.units.TableUnits(options_.si);
   static const char* kGlobal[] = {"x", "y", "z"};
   static const char* kFrame[] = {"f", "g", "h"};
   for (size_t d = 0; d < model.drivers.size(); ++d) {

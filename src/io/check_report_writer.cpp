@@ -98,6 +98,23 @@ void PrintMobility(const MobilityReport& m, int drivers, std::ostream& out) {
   }
 }
 
+// A planar mechanism: the plane and the planar count next to the spatial one
+// (whose excess redundancy is the out-of-plane equations every planar loop repeats).
+void PrintPlanar(const PlanarStructure& p, int drivers, std::ostream& out) {
+  char normal[96];
+  std::snprintf(normal, sizeof normal, "[%.6g, %.6g, %.6g]", p.normal.x() + 0.0, p.normal.y() + 0.0, p.normal.z() + 0.0);
+  out << "  planar: every body moves parallel to the plane normal to " << normal << "; planar count 3n − 2j₁ − j₂ = "
+      << p.count << " (after drivers: " << p.count - drivers << ")\n";
+}
+
+json PlanarJson(const PlanarStructure& p, int drivers) {
+  return {{"normal", {p.normal.x() + 0.0, p.normal.y() + 0.0, p.normal.z() + 0.0}},
+          {"grubler", p.count},
+          {"dof_after_drivers_count", p.count - drivers},
+          {"lower_pairs", p.lower_pairs},
+          {"higher_pairs", p.higher_pairs}};
+}
+
 void PrintErrors(const CheckReport& r, std::ostream& out) {
   out << "INVALID (" << r.errors.size() << (r.errors.size() == 1 ? " error)\n" : " errors)\n");
   for (const auto& e : r.errors) {
@@ -199,6 +216,7 @@ void PrintSummary(const CheckReport& r, std::ostream& out) {
   out << (r.joints.empty() ? "none" : "") << " (" << total << " total)\n";
   out << "  drivers: " << r.drivers << "\n";
   out << "  Grübler–Kutzbach count: " << r.grubler << " (after drivers: " << r.dof_after_drivers_count << ")\n";
+  if (r.planar) PrintPlanar(*r.planar, r.drivers, out);
   if (r.mobility) PrintMobility(*r.mobility, r.drivers, out);
   if (r.branches)
     out << "  assembly branches at the drivers' design values: " << r.branches->branches << " (from "
@@ -228,6 +246,7 @@ json CheckReportJson(const CheckReport& r) {
   j["drivers"] = r.drivers;
   j["grubler"] = r.grubler;
   j["dof_after_drivers_count"] = r.dof_after_drivers_count;
+  if (r.planar) j["planar"] = PlanarJson(*r.planar, r.drivers);
   if (r.mobility) j["mobility"] = MobilityJson(*r.mobility, r.drivers);
   j["geometry"] = GeometryJson(r);
   if (r.branches)

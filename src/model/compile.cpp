@@ -1,5 +1,6 @@
 #include "model/compile.hpp"
 
+#include <cctype>
 #include <cmath>
 
 #include "model/compiler.hpp"
@@ -228,6 +229,25 @@ void Compiler::CompileHeader() {
   model_.source = spec_.source;
 }
 
+namespace {
+
+// The accepted name `name` spells with other separators ("Nmm", "N.m", "lbf-in" for
+// N*mm, N*m, lbf*in), else "": a better guess than the nearest by edits ("Nmm" is
+// one edit from N*m too). Case is kept: MN is not mN.
+std::string UnitSpelledOtherwise(const std::string& name, const std::vector<std::string>& names) {
+  auto plain = [](const std::string& s) {
+    std::string out;
+    for (char c : s)
+      if (std::isalnum(static_cast<unsigned char>(c))) out += c;
+    return out;
+  };
+  for (const std::string& n : names)
+    if (plain(n) == plain(name)) return n;
+  return "";
+}
+
+}  // namespace
+
 void Compiler::CompileUnits() {
   out_.SetPlace(Section::Units);
   if (spec_.units) {
@@ -240,7 +260,9 @@ void Compiler::CompileUnits() {
         *factor = *f;
         return;
       }
-      const std::string g = DidYouMean(*name, names);
+      const bool named_force = std::string(key) == "force" || std::string(key) == "torque";
+      std::string g = named_force ? UnitSpelledOtherwise(*name, names) : "";  // "Nmm": N*mm
+      if (g.empty()) g = DidYouMean(*name, names);
       Error(std::string("/units/") + key, std::string("unknown ") + key + " unit '" + Shorten(*name) + "'",
             (g.empty() ? "" : "did you mean '" + g + "'? ") + "use one of " + Join(names));
     };
@@ -248,6 +270,8 @@ void Compiler::CompileUnits() {
     unit(u.mass, "mass", MassUnitToSi, MassUnitNames(), &m.mass_name, &m.mass_to_si);
     unit(u.length, "length", LengthUnitToSi, LengthUnitNames(), &m.length_name, &m.length_to_si);
     unit(u.angle, "angle", AngleUnitToSi, AngleUnitNames(), &m.angle_name, &m.angle_to_si);
+    unit(u.force, "force", ForceUnitToSi, ForceUnitNames(), &m.force_name, &m.named_force_to_si);
+    unit(u.torque, "torque", TorqueUnitToSi, TorqueUnitNames(), &m.torque_name, &m.named_torque_to_si);
   }
   length_ = model_.units.length_to_si;
   angle_ = model_.units.angle_to_si;

@@ -60,7 +60,7 @@ bool Compiler::CompileSpring(const LoadSpec& o, Load* load) {
     Error(ptr + "/body2", "a spring between a body and itself does nothing", "name two different bodies");
     return false;
   }
-  const double stiffness_to_si = model_.units.mass_to_si;  // force/length = mass/s²
+  const double stiffness_to_si = model_.units.stiffness_to_si();  // force / length (damping: force·s / length)
   load->body1 = *b1;
   load->body2 = *b2;
   load->point1 = LocalPoint(*b1, *p1);

@@ -47,7 +47,8 @@ std::optional<JointFrame> Compiler::Marker(BodyIndex body, const std::optional<s
   return std::nullopt;
 }
 
-// A joint on two markers: its frames are the markers' (already in body coordinates).
+// A joint on two markers: its frames are the markers' (already in body coordinates),
+// so its coordinate is 0 where the markers coincide, not at the pose drawn.
 void Compiler::CompileMarkerJoint(const JointSpec& j, JointType type, const std::string* name,
                                   std::optional<BodyIndex> body1, std::optional<BodyIndex> body2) {
   const std::string& ptr = j.pointer;
@@ -85,6 +86,7 @@ void Compiler::CompileMarkerJoint(const JointSpec& j, JointType type, const std:
   joint.body2 = *body2;
   joint.frame1 = *m1;
   joint.frame2 = *m2;
+  joint.on_markers = true;
   joint_index_[joint.name] = static_cast<int>(model_.joints.size());
   model_.joints.push_back(joint);
 }

@@ -79,6 +79,9 @@ struct Joint {
   JointFrame frame1, frame2;  // local frames on body1 and body2 (coincide globally at design)
   double pitch = 0;           // screw: metres per revolution (right-handed positive)
   double length = 0;          // distance: link length (m)
+  // Defined on two markers: its frames are the markers' (not the design pose's), so
+  // its coordinate is 0 where the markers coincide, whatever the pose drawn.
+  bool on_markers = false;
 };
 
 enum class DriverKind { JointRotation, BodyRotation, JointTranslation, Distance };
@@ -120,8 +123,9 @@ struct Output {
 struct Analysis {
   double start = 0, end = 1;
   int steps = 100;
-  // "branch": {"joints": {J: value}}: approximate joint coordinates (SI, from the
-  // design pose) of the assembly branch wanted, at the drivers' design values.
+  // "branch": {"joints": {J: value}}: approximate joint coordinates (SI; from the
+  // design pose, or for a joint on markers from their coincidence) of the assembly
+  // branch wanted, at the drivers' design values.
   std::vector<std::pair<int, double>> branch_joints;
   // "branch": {"flip": [J, ...]}: take the other closure of the loop at each joint
   // (the nearest assembly whose coordinate of J differs).

@@ -129,11 +129,13 @@ void ReadUnits(JsonReader& rd, const json& doc, MechanismSpec* spec) {
   rd.diagnostics().SetPlace(Section::Units);
   if (!doc.contains("units")) return;
   const json& u = doc.at("units");
-  if (!rd.CheckObject(u, "/units", {"length", "angle", "mass"}, {}, "'units'")) return;
+  if (!rd.CheckObject(u, "/units", {"length", "angle", "mass", "force", "torque"}, {}, "'units'")) return;
   UnitsSpec units;
   units.mass = rd.String(u, "mass", "/units");
   units.length = rd.String(u, "length", "/units");
   units.angle = rd.String(u, "angle", "/units");
+  units.force = rd.String(u, "force", "/units");
+  units.torque = rd.String(u, "torque", "/units");
   spec->units = units;
 }
 

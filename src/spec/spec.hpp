@@ -171,6 +171,7 @@ struct AnalysisSpec {
 
 struct UnitsSpec {
   std::optional<std::string> length, angle, mass;
+  std::optional<std::string> force, torque;  // named force and torque units (default: derived)
 };
 
 struct ExpectSpec {

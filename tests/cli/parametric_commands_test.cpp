@@ -2,6 +2,8 @@
 // and sweep — their exit codes and the messages a slip gets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -109,6 +111,33 @@ TEST(ParametricCommands, SweepArgumentsAreChecked) {
   ASSERT_EQ(RunSweepCommand(o, o4, e4), 0) << e4.str();
   const std::string table = o4.str();
   EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 4);  // header + 3 variants
+}
+
+// Acceptance (joint coordinates from the markers): `mechkin sweep` of the marker four-bar
+// over its crank length with the crank held at 0: each variant's rocker angle is the
+// closed form's there (C at 120 from B = (a, 0) and 80 from D = (100, 0)), not 0.
+TEST(ParametricCommands, SweepOfAMarkerFourBarReadsTheClosedFormAtTheCranksZero) {
+  SweepCommandOptions o;
+  o.files = {std::string(MECHKIN_SOURCE_DIR) + "/tests/data/marker-four-bar.json"};
+  o.set = {"speed=0"};
+  o.grid = {"crank=30:50:3"};
+  o.request.order = 0;
+  o.format = "json";
+  std::ostringstream out, err;
+  ASSERT_EQ(RunSweepCommand(o, out, err), 0) << err.str();
+  const auto j = nlohmann::json::parse(out.str());
+  const auto& columns = j["columns"];
+  const auto rocker = std::find(columns.begin(), columns.end(), "rocker_angle [deg]") - columns.begin();
+  ASSERT_LT(rocker, static_cast<long>(columns.size())) << columns.dump();
+  ASSERT_EQ(j["variants"].size(), 3u);
+  for (const auto& v : j["variants"]) {
+    ASSERT_EQ(v["status"], "complete") << v.dump();
+    const double a = v["values"][0], b = 120, c = 80, d = 100;
+    const double cos_psi = (c * c + (d - a) * (d - a) - b * b) / (2 * c * (d - a));
+    const double expected = 180 - std::acos(cos_psi) * 180 / M_PI;
+    EXPECT_NEAR(v["min"][rocker].get<double>(), expected, 1e-8) << a;
+    EXPECT_NEAR(v["max"][rocker].get<double>(), expected, 1e-8) << a;
+  }
 }
 
 }  // namespace

@@ -19,6 +19,51 @@ TEST(Units, AngleFactors) {
   EXPECT_FALSE(AngleUnitToSi("grad").has_value());
 }
 
+TEST(Units, ForceAndTorqueFactors) {
+  EXPECT_EQ(*ForceUnitToSi("N"), 1.0);
+  EXPECT_EQ(*ForceUnitToSi("kN"), 1e3);
+  EXPECT_EQ(*ForceUnitToSi("mN"), 1e-3);
+  EXPECT_DOUBLE_EQ(*ForceUnitToSi("lbf"), 0.45359237 * 9.80665);  // exact by definition
+  EXPECT_FALSE(ForceUnitToSi("kgf").has_value());
+  EXPECT_EQ(*TorqueUnitToSi("N*m"), 1.0);
+  EXPECT_EQ(*TorqueUnitToSi("N*mm"), 1e-3);
+  EXPECT_EQ(*TorqueUnitToSi("kN*m"), 1e3);
+  EXPECT_DOUBLE_EQ(*TorqueUnitToSi("lbf*in"), 0.45359237 * 9.80665 * 0.0254);
+  EXPECT_DOUBLE_EQ(*TorqueUnitToSi("lbf*ft"), 0.45359237 * 9.80665 * 0.3048);
+  EXPECT_FALSE(TorqueUnitToSi("Nm").has_value());
+}
+
+// Named force and torque units: loads, stiffness (force / length), damping and
+// preload to SI; without the keys, the derived units as before.
+TEST(Units, NamedForceUnitsConvertLoadsAndSprings) {
+  const std::string base = R"({"mechkin": 1, "units": {"length": "mm", "mass": "kg" UNITS},
+    "bodies": [{"name": "b", "position": [10, 0, 0]}],
+    "joints": [{"name": "j", "type": "revolute", "body1": "ground", "body2": "b", "origin": [0, 0, 0], "axis": [0, 0, 1]}],
+    "loads": [{"name": "f", "type": "force", "body": "b", "point": [10, 0, 0], "components": [2, 0, 0]},
+              {"name": "m", "type": "torque", "body": "b", "components": [0, 0, 3]},
+              {"name": "s", "type": "spring", "body1": "ground", "point1": [0, 5, 0], "body2": "b", "point2": [10, 0, 0],
+               "stiffness": 4, "damping": 6, "preload": 7}]})";
+  auto load = [&](const std::string& units) {
+    std::string text = base;
+    text.replace(text.find("UNITS"), 5, units);
+    const LoadResult r = LoadMechanismText(text, "inline");
+    EXPECT_TRUE(r.ok()) << (r.errors.empty() ? "" : r.errors[0].ToString());
+    return *r.model;
+  };
+  const Model derived = load(""), named = load(R"(, "force": "kN", "torque": "N*m")"), force = load(R"(, "force": "N")");
+  EXPECT_DOUBLE_EQ(derived.loads[0].components[0].Eval(0).c[0], 2e-3);  // kg·mm/s²
+  EXPECT_DOUBLE_EQ(derived.loads[1].components[2].Eval(0).c[0], 3e-6);  // kg·mm²/s²
+  EXPECT_EQ(derived.loads[2].stiffness, 4.0);                           // kg/s² = N/m
+  EXPECT_DOUBLE_EQ(named.loads[0].components[0].Eval(0).c[0], 2e3);
+  EXPECT_DOUBLE_EQ(named.loads[1].components[2].Eval(0).c[0], 3.0);
+  EXPECT_DOUBLE_EQ(named.loads[2].stiffness, 4e6);  // kN/mm
+  EXPECT_DOUBLE_EQ(named.loads[2].damping, 6e6);
+  EXPECT_DOUBLE_EQ(named.loads[2].preload, 7e3);
+  EXPECT_DOUBLE_EQ(force.loads[1].components[2].Eval(0).c[0], 3e-3);  // N·mm
+  EXPECT_DOUBLE_EQ(force.loads[2].stiffness, 4e3);                     // N/mm
+  EXPECT_EQ(force.units.TorqueName(), "N*mm");
+}
+
 // The same geometry written in inches and degrees loads to the same SI model.
 TEST(Units, FileInInchesAndDegreesIsConvertedToSi) {
   const std::string text = R"({"mechkin": 1, "units": {"length": "in", "angle": "deg"},

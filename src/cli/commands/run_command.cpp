@@ -15,6 +15,7 @@
 #include "io/async_sink.hpp"
 #include "io/interrupt.hpp"
 #include "io/table_writer.hpp"
+#include "mobility/grubler.hpp"
 
 namespace mechkin {
 
@@ -35,6 +36,9 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
                 "On Ctrl-C (SIGINT) write the rows computed so far as a partial table instead of nothing");
   cmd->add_flag("--si", o->request.si, "Write SI units (m, rad) instead of the file's units");
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
+  cmd->add_flag("--quiet", o->quiet,
+                "No notes on stderr: redundant equations set aside, undetermined reactions, singular passages "
+                "(warnings and errors still print)");
   cmd->add_option("--bodies", o->bodies, "Bodies whose columns are written (comma-separated; none: '')")->delimiter(',');
   cmd->add_option("--outputs", o->outputs, "Outputs whose columns are written (comma-separated)")->delimiter(',');
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
@@ -102,14 +106,14 @@ class ConditioningWatch {
       worst_[k] = std::max(worst_[k], d.error_bound[k]);
     }
   }
-  void Report(std::ostream& err) const {
+  void Report(std::ostream& err, bool notes) const {
     static const char* kOrderName[] = {"position", "velocity", "acceleration", "jerk", "snap"};
     for (int k = 0; k <= order_; ++k)
       if (seen_[k])
         err << "mechkin run: warning: " << kOrderName[k] << " is ill-conditioned from t = " << first_t_[k]
             << " s (condition estimate " << first_condition_[k] << "; relative error bound up to " << worst_[k]
             << "): a singular position is near; see the error_bound columns\n";
-      else if (above_[k])
+      else if (above_[k] && notes)
         err << "mechkin run: note: the " << kOrderName[k] << " error bound exceeds 10 x --tol " << tolerance_
             << " from t = " << above_from_[k] << " to " << above_to_[k] << " s (up to " << worst_[k]
             << "): solved to the residual it needs, the mechanism's conditioning still costs digits there;"
@@ -144,6 +148,32 @@ void ReportSetAside(const AnalysisReport& rep, std::ostream& err) {
   }
   if (rep.reselections.size() > kListedSetAside)
     err << "mechkin run: ... and " << rep.reselections.size() - kListedSetAside << " more re-selections\n";
+}
+
+// A planar file whose planar count equals its drivers (the run is fully driven, so
+// mobility = drivers = planar count) has no redundancy in its plane: every equation
+// set aside is one of the out-of-plane equations each planar loop repeats, which
+// `mechkin check` reports once; a run does not repeat them.
+bool OnlyOutOfPlaneRedundancy(const Model& model) {
+  const std::optional<PlanarStructure> planar = FindPlanarStructure(model);
+  return planar && planar->count == static_cast<int>(model.drivers.size());
+}
+
+void PrintNotes(const RunOptions& o, const Model& model, const AnalysisReport& rep, const ConditioningWatch& watch,
+                std::ostream& err) {
+  if (o.quiet) {
+    watch.Report(err, false);
+    return;
+  }
+  if (!OnlyOutOfPlaneRedundancy(model)) ReportSetAside(rep, err);
+  if (!rep.indeterminate_reactions.empty()) {
+    err << "mechkin run: overconstrained: these reaction components are not determined by the motion and the loads "
+           "(the table gives the minimum-norm solution; driver efforts are exact); make the joints determinate as "
+           "`mechkin check` suggests:\n";
+    for (const auto& r : rep.indeterminate_reactions) err << "    " << r << "\n";
+  }
+  watch.Report(err, true);
+  for (const std::string& passed : rep.notes) err << "mechkin run: note: " << passed << "\n";
 }
 
 void PrintStats(const AnalysisReport& rep, const std::vector<StepDiagnostics>& steps, std::ostream& err) {
@@ -216,15 +246,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   });
   const bool rows_written = rows_out.Drain();
   progress.Clear();
-  ReportSetAside(rep, err);
-  if (!rep.indeterminate_reactions.empty()) {
-    err << "mechkin run: overconstrained: these reaction components are not determined by the motion and the loads "
-           "(the table gives the minimum-norm solution; driver efforts are exact); make the joints determinate as "
-           "`mechkin check` suggests:\n";
-    for (const auto& r : rep.indeterminate_reactions) err << "    " << r << "\n";
-  }
-  watch.Report(err);
-  for (const std::string& passed : rep.notes) err << "mechkin run: note: " << passed << "\n";
+  PrintNotes(o, model, rep, watch, err);
   if (!rep.complete && rep.stop != StopKind::Interrupted) err << "mechkin run: " << o.file << ": " << rep.message << "\n";
   if (o.stats && !steps.empty()) PrintStats(rep, steps, err);
   if (rep.rows == 0) return 1;  // refused or failed before the first row: no table at all

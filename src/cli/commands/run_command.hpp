@@ -19,6 +19,7 @@ struct RunOptions {
   RunRequest request;
   bool stats = false;
   bool keep_partial = false;                // SIGINT writes the rows so far (marked partial)
+  bool quiet = false;                       // --quiet: no notes on stderr (warnings and errors stay)
   bool forces = false, no_forces = false;   // --forces / --no-forces (default: when the file has inertia or loads)
   std::vector<std::string> bodies;   // --bodies: subset of body columns
   std::vector<std::string> outputs;  // --outputs: subset of output columns
