@@ -368,3 +368,20 @@ TEST(AssembleModel, MarkerChainOfThousandsOfBodiesAssembles) {
 
 }  // namespace
 }  // namespace mechkin
+
+namespace mechkin {
+namespace {
+
+// tests/data/four-bar-by-lengths.json (the bundled planar four-bar by its link
+// lengths and a rocker hint): it assembles onto the bundled file's pose — the
+// rocker's pin at the global form's joint C.
+TEST(AssembleModel, FourBarByLengthsFileLandsOnTheBundledPose) {
+  const Model by_lengths = testing_files::FromJson(testing_files::ReadTestData("four-bar-by-lengths.json"));
+  const nlohmann::json global = testing_files::ReadJson("planar-four-bar.json");
+  const Body& rocker = by_lengths.bodies[2];
+  const Vec3 pin = rocker.position + CalcA(rocker.euler) * Vec3(0.080, 0, 0);  // the rocker's "pin" marker (80 mm)
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(pin[k] * 1000, global["joints"][2]["origin"][k].get<double>(), 1e-8) << k;
+}
+
+}  // namespace
+}  // namespace mechkin
