@@ -385,3 +385,29 @@ TEST(AssembleModel, FourBarByLengthsFileLandsOnTheBundledPose) {
 
 }  // namespace
 }  // namespace mechkin
+
+namespace mechkin {
+namespace {
+
+// Every variant compiles and assembles again: with_parameters on the crank length
+// gives a newly closed pose whose crank pin lies at the new length and whose rocker
+// pin satisfies Freudenstein for that length (the open branch, hint kept).
+TEST(AssembleModel, WithParametersAssemblesEachVariant) {
+  const Model base = testing_files::FromJson(testing_files::ReadTestData("four-bar-by-lengths.json"));
+  for (double crank : {30.0, 45.0, 50.0}) {
+    const LoadResult r = WithParameters(base, {{"crank", crank}});
+    ASSERT_TRUE(r.ok()) << (r.errors.empty() ? "" : r.errors[0].ToString());
+    const Model& m = *r.model;
+    ASSERT_TRUE(m.assembly && m.assembly->assembled);
+    EXPECT_LT(m.assembly->loops[0].error_after, 1e-12);
+    const Body& rocker = m.bodies[2];
+    const Vec3 pin = (rocker.position + CalcA(rocker.euler) * Vec3(0.080, 0, 0)) * 1000;  // mm
+    const double phi = std::atan2(pin.y(), pin.x() - 100), th = M_PI / 3;
+    const double K1 = 100 / crank, K2 = 100 / 80.0, K3 = (crank * crank - 120 * 120 + 80 * 80 + 100 * 100) / (2 * crank * 80);
+    EXPECT_NEAR(K1 * std::cos(phi) - K2 * std::cos(th) + K3, std::cos(th - phi), 1e-9) << crank;
+    EXPECT_GT(pin.y(), 0) << crank;  // the hinted (upper, open) branch
+  }
+}
+
+}  // namespace
+}  // namespace mechkin
