@@ -368,3 +368,46 @@ TEST(AssembleModel, MarkerChainOfThousandsOfBodiesAssembles) {
 
 }  // namespace
 }  // namespace mechkin
+
+namespace mechkin {
+namespace {
+
+// tests/data/four-bar-by-lengths.json (the bundled planar four-bar by its link
+// lengths and a rocker hint): it assembles onto the bundled file's pose — the
+// rocker's pin at the global form's joint C.
+TEST(AssembleModel, FourBarByLengthsFileLandsOnTheBundledPose) {
+  const Model by_lengths = testing_files::FromJson(testing_files::ReadTestData("four-bar-by-lengths.json"));
+  const nlohmann::json global = testing_files::ReadJson("planar-four-bar.json");
+  const Body& rocker = by_lengths.bodies[2];
+  const Vec3 pin = rocker.position + CalcA(rocker.euler) * Vec3(0.080, 0, 0);  // the rocker's "pin" marker (80 mm)
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(pin[k] * 1000, global["joints"][2]["origin"][k].get<double>(), 1e-8) << k;
+}
+
+}  // namespace
+}  // namespace mechkin
+
+namespace mechkin {
+namespace {
+
+// Every variant compiles and assembles again: with_parameters on the crank length
+// gives a newly closed pose whose crank pin lies at the new length and whose rocker
+// pin satisfies Freudenstein for that length (the open branch, hint kept).
+TEST(AssembleModel, WithParametersAssemblesEachVariant) {
+  const Model base = testing_files::FromJson(testing_files::ReadTestData("four-bar-by-lengths.json"));
+  for (double crank : {30.0, 45.0, 50.0}) {
+    const LoadResult r = WithParameters(base, {{"crank", crank}});
+    ASSERT_TRUE(r.ok()) << (r.errors.empty() ? "" : r.errors[0].ToString());
+    const Model& m = *r.model;
+    ASSERT_TRUE(m.assembly && m.assembly->assembled);
+    EXPECT_LT(m.assembly->loops[0].error_after, 1e-12);
+    const Body& rocker = m.bodies[2];
+    const Vec3 pin = (rocker.position + CalcA(rocker.euler) * Vec3(0.080, 0, 0)) * 1000;  // mm
+    const double phi = std::atan2(pin.y(), pin.x() - 100), th = M_PI / 3;
+    const double K1 = 100 / crank, K2 = 100 / 80.0, K3 = (crank * crank - 120 * 120 + 80 * 80 + 100 * 100) / (2 * crank * 80);
+    EXPECT_NEAR(K1 * std::cos(phi) - K2 * std::cos(th) + K3, std::cos(th - phi), 1e-9) << crank;
+    EXPECT_GT(pin.y(), 0) << crank;  // the hinted (upper, open) branch
+  }
+}
+
+}  // namespace
+}  // namespace mechkin

@@ -70,13 +70,15 @@ TEST(Joints, KernelDimensionIsTheFreedomsAllowed) {
 }
 
 // Φ = 0 to 1e-12 (relative to the mechanism size) at the design pose of every
-// bundled mechanism: the files are assembled as written.
+// bundled mechanism: the files are assembled as written (a file placed by markers
+// is assembled by analysis/load.hpp, above this layer: tests/analysis checks those).
 TEST(Joints, BundledMechanismsAreAssembledAtTheDesignPose) {
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms")) {
     if (entry.path().extension() != ".json") continue;
     const LoadResult r = LoadFileUnassembled(entry.path().string());
     ASSERT_TRUE(r.ok()) << entry.path();
+    if (r.model->assembly) continue;
     const ConstraintSystem sys(*r.model, false);
     const SystemState s(sys);
     Eigen::VectorXd phi;
