@@ -378,15 +378,11 @@ void ClassifyDriving(const Model& model, const std::function<Eigen::MatrixXd()>&
   MobilityReport& rep = *rep_ptr;
   const int n = model.num_bodies();
   const int idle = static_cast<int>(rep.idle.size());
-  if (!rep.conflicting_drivers.empty())
-    rep.driving_status = DrivingStatus::Over;
-  else if (rep.dof_after_drivers - idle > 0)
-    rep.driving_status = DrivingStatus::Under;
-  else
-    rep.driving_status = DrivingStatus::Full;
+  rep.driving_status = JudgeDriving(static_cast<int>(rep.conflicting_drivers.size()), rep.dof_after_drivers);
   if (rep.driving_status == DrivingStatus::Under) {
-    // Name the remaining freedoms by the bodies they move most.
-    const Eigen::MatrixXd null_basis = null_basis_of_full();
+    // Name the remaining freedoms by the bodies they move most (the null basis
+    // only when some freedom is not idle: a large model of idle spins skips it).
+    const Eigen::MatrixXd null_basis = rep.dof_after_drivers > idle ? null_basis_of_full() : Eigen::MatrixXd();
     for (int c = 0;
          c < null_basis.cols() && static_cast<int>(rep.remaining_freedoms.size()) < rep.dof_after_drivers - idle;
          ++c) {
@@ -400,6 +396,8 @@ void ClassifyDriving(const Model& model, const std::function<Eigen::MatrixXd()>&
         if (mag > 1e-6 && listed < 4) s += (listed++ ? ", `" : "`") + model.bodies[b].name + "`";
       rep.remaining_freedoms.push_back(s + " is not driven");
     }
+    // The idle spins are freedoms too: a run would have to fix them.
+    for (const auto& f : rep.idle) rep.remaining_freedoms.push_back("idle, not driven: " + f.description);
   }
 }
 
@@ -617,6 +615,11 @@ MobilityReport CalcMobility(const Model& model) {
     SetOverconstrainedVerdict(&rep);
   }
   return rep;
+}
+
+DrivingStatus JudgeDriving(int conflicting_drivers, int freedoms_left) {
+  if (conflicting_drivers > 0) return DrivingStatus::Over;
+  return freedoms_left > 0 ? DrivingStatus::Under : DrivingStatus::Full;
 }
 
 const char* DrivingStatusName(DrivingStatus status) {

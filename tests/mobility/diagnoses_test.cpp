@@ -82,5 +82,44 @@ TEST(Diagnoses, RegularMechanismsGetNeither) {
   globfree(&g);
 }
 
+// Issue 23 item 8: `check`'s `driven` and `run`'s refusal come from one rule
+// (JudgeDriving). The S–S RSSR: Grübler 6·3 − (5 + 3 + 3 + 5) = 2 freedoms, one
+// driver, so one freedom (the coupler's spin) is left: under, and the run refuses.
+TEST(Diagnoses, TheSpinningRssrCouplerIsUnderDrivenInCheckAndRun) {
+  const Model m = testing_files::FromJson(testing_files::ReadJson("rssr-function-generator.json"));
+  const MobilityReport r = CalcMobility(m);
+  EXPECT_EQ(r.mobility, 2);
+  EXPECT_EQ(r.dof_after_drivers, 1);
+  ASSERT_EQ(r.idle.size(), 1u);
+  EXPECT_EQ(r.driving_status, DrivingStatus::Under);
+  ASSERT_EQ(r.remaining_freedoms.size(), 1u);
+  EXPECT_NE(r.remaining_freedoms[0].find("idle, not driven: body `coupler`"), std::string::npos)
+      << r.remaining_freedoms[0];
+  const AnalysisReport run = RunQuietly(m);
+  EXPECT_EQ(run.stop, StopKind::Refused);
+  EXPECT_EQ(run.message.rfind("under-driven: 1 freedom(s)", 0), 0u) << run.message;
+}
+
+TEST(Diagnoses, CheckAndRunAgreeOnEveryBundledMechanism) {
+  glob_t g;
+  ASSERT_EQ(glob((std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/*.json").c_str(), 0, nullptr, &g), 0);
+  int refused = 0;
+  for (size_t k = 0; k < g.gl_pathc; ++k) {
+    const std::string path = g.gl_pathv[k];
+    nlohmann::json j = testing_files::ReadJson(path.substr(path.rfind('/') + 1));
+    if (!j.contains("analysis")) j["analysis"] = {{"start", 0}, {"end", 1}, {"steps", 10}};
+    const Model m = testing_files::FromJson(j);
+    const bool full = CalcMobility(m).driving_status == DrivingStatus::Full;
+    AnalysisOptions options;
+    options.order = 0;
+    const AnalysisReport run =
+        RunKinematicAnalysis(m, options, [](const SystemState&, const StepDiagnostics&) { return false; });
+    EXPECT_EQ(full, run.stop != StopKind::Refused) << g.gl_pathv[k] << ": " << run.message;
+    refused += run.stop == StopKind::Refused;
+  }
+  globfree(&g);
+  EXPECT_EQ(refused, 2);  // the RSSR and the Stewart platform with S-P-S leg bodies
+}
+
 }  // namespace
 }  // namespace mechkin
