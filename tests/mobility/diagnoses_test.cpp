@@ -121,5 +121,54 @@ TEST(Diagnoses, CheckAndRunAgreeOnEveryBundledMechanism) {
   EXPECT_EQ(refused, 2);  // the RSSR and the Stewart platform with S-P-S leg bodies
 }
 
+// Issue 23 item 5: the Watt II six-bar (tests/data/watt-ii-six-bar.json: loop 1 =
+// A, B, C, D and loop 2 = D, E, F, G, sharing the ternary link and its pivot D)
+// with one revolute axis turned 90°. The turned joint locks its loop, and the
+// locked loop the whole linkage; the joints named are those whose removal frees
+// the loops, not every joint whose removal lets a crank dangle: the turned joint's
+// loop (both loops share only D, so D alone when D is turned), and the turned axis
+// is called out by name.
+struct TurnedAxis {
+  int joint;
+  std::vector<std::string> locking;
+};
+
+class LockedWattII : public ::testing::TestWithParam<TurnedAxis> {};
+
+TEST_P(LockedWattII, IsLockedByTheJointsNamingTheTurnedOne) {
+  const TurnedAxis c = GetParam();
+  nlohmann::json j = testing_files::ReadTestData("watt-ii-six-bar.json");
+  const std::string turned = j["joints"][c.joint]["name"];
+  j["joints"][c.joint]["axis"] = {1, 0, 0};
+  const Model m = testing_files::FromJson(j);
+  const MobilityReport r = CalcMobility(m);
+  EXPECT_EQ(r.mobility, 0);
+  EXPECT_TRUE(r.locked);
+  EXPECT_EQ(r.locking_joints, c.locking) << r.verdict;
+  EXPECT_EQ(r.verdict.rfind("locked by the joints", 0), 0u) << r.verdict;
+  if (c.locking.size() > 1)
+    EXPECT_NE(r.verdict.find("the axis of `" + turned + "` is 90° off"), std::string::npos) << r.verdict;
+  const AnalysisReport run = RunQuietly(m);
+  EXPECT_EQ(run.stop, StopKind::Refused);
+  EXPECT_NE(run.message.find("locked by the joints"), std::string::npos) << run.message;
+  EXPECT_NE(run.message.find("`" + turned + "`"), std::string::npos) << run.message;
+  EXPECT_EQ(run.message.find("over-driven"), std::string::npos) << run.message;
+}
+
+const std::vector<std::string> kLoop1{"A", "B", "C", "D"}, kLoop2{"D", "E", "F", "G"};
+INSTANTIATE_TEST_SUITE_P(EachJoint, LockedWattII,
+                         ::testing::Values(TurnedAxis{0, kLoop1}, TurnedAxis{1, kLoop1}, TurnedAxis{2, kLoop1},
+                                           TurnedAxis{3, {"D"}}, TurnedAxis{4, kLoop2}, TurnedAxis{5, kLoop2},
+                                           TurnedAxis{6, kLoop2}));
+
+TEST(Diagnoses, TheWattIIWithItsAxesRightMoves) {
+  const Model m = testing_files::FromJson(testing_files::ReadTestData("watt-ii-six-bar.json"));
+  const MobilityReport r = CalcMobility(m);
+  EXPECT_EQ(r.mobility, 1);  // planar count 3·5 − 2·7
+  EXPECT_FALSE(r.locked);
+  EXPECT_EQ(r.driving_status, DrivingStatus::Full);
+  EXPECT_TRUE(RunQuietly(m).complete);
+}
+
 }  // namespace
 }  // namespace mechkin
