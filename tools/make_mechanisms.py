@@ -168,7 +168,8 @@ def spatial_four_bars():
     write("rssr-function-generator", dict({
         "mechkin": 1, "name": "RSSR function generator",
         "description": "Spatial R-S-S-R: the coupler between two spherical joints can spin about its own axis, an idle "
-                       "freedom (count 2, true mobility 2). A distance joint instead of the coupler body would remove it.",
+                       "freedom (count 2, true mobility 2). `run` refuses it (driven: under, the spin is not driven); a distance joint "
+                       "instead of the coupler body removes it (r-ss-r-distance-link.json).",
         "bodies": [{"name": "crank", "position": r(mid(A, B))},
                    {"name": "coupler", "position": r(mid(B, C))},
                    {"name": "rocker", "position": r(mid(C, D))}],
@@ -178,7 +179,7 @@ def spatial_four_bars():
             {"name": "S2", "type": "spherical", "body1": "coupler", "body2": "rocker", "origin": r(C)},
             {"name": "output", "type": "revolute", "body1": "ground", "body2": "rocker", "origin": r(D), "axis": [1, 0, 0]}],
         "outputs": [{"name": "output_angle", "type": "joint", "joint": "output"}],
-        "expect": {"grubler": 2, "mobility": 2, "redundant": 0, "idle": 1, "driven": "full"}}, **common))
+        "expect": {"grubler": 2, "mobility": 2, "redundant": 0, "idle": 1, "driven": "under"}}, **common))
     write("r-ss-r-distance-link", dict({
         "mechkin": 1, "name": "R-SS-R with a distance link",
         "description": "The RSSR function generator modelled lean: the coupler is a distance joint, not a body.",
@@ -327,12 +328,13 @@ def stewart():
     write("stewart-platform-sps-legs", {
         "mechkin": 1, "name": "Stewart-Gough platform, S-P-S legs as bodies",
         "description": "The same platform with each leg modelled as a cylinder and a piston: every leg can spin about "
-                       "its own axis without moving anything else (6 idle freedoms).",
+                       "its own axis without moving anything else (6 idle freedoms, so driven: under and `run` refuses it; "
+                       "stewart-platform.json models the legs as driven distances).",
         "units": {"length": "m", "angle": "deg"},
         "bodies": bodies, "joints": joints, "drivers": drv,
         "analysis": {"start": 0, "end": 1, "steps": 100},
         "outputs": [{"name": "centre", "type": "point", "body": "platform", "point": [0, 0, 0.6]}],
-        "expect": {"grubler": 12, "mobility": 12, "redundant": 0, "idle": 6, "driven": "full"},
+        "expect": {"grubler": 12, "mobility": 12, "redundant": 0, "idle": 6, "driven": "under"},
         "view": {"up": "z"}})
 
 

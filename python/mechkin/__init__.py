@@ -118,10 +118,13 @@ class ToleranceReport(_Report):
         raise KeyError(name)
 
     def to_pandas(self):
-        """One row per time: worst case and RSS of every column (`C worst_case`, `C rss`)."""
+        """One row per time: worst case and RSS of every column (`C worst_case`, `C rss`);
+        columns with no stack-up (`not_computed`: a velocity ratio at order 0) are left out."""
         import pandas as pd
         frame = {"t": self._data["t"]}
         for c in self._data["columns"]:
+            if "not_computed" in c:
+                continue
             frame[c["name"] + " worst_case"] = c["worst_case"]
             frame[c["name"] + " rss"] = c["rss"]
         return pd.DataFrame(frame)

@@ -5,6 +5,8 @@
 #include <optional>
 #include <sstream>
 
+#include "kinematics/position.hpp"
+
 namespace mechkin {
 
 namespace {
@@ -40,8 +42,14 @@ void AimRotationDrivers(const ConstraintSystem& sys, SystemState* s) {
   }
 }
 
-std::string DescribeResiduals(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& rows,
-                              const Eigen::VectorXd& scales, int count) {
+std::string DescribeResiduals(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& solved,
+                              const Eigen::VectorXd& solved_scales, int count) {
+  // A solve that ran block by block has no whole active set: list over all rows
+  // then, so the list is never empty (issue 23 item 10).
+  const bool whole = !solved.empty() && solved_scales.size() == static_cast<Eigen::Index>(solved.size());
+  const std::vector<int> rows = whole ? solved : AllRows(sys);
+  const Eigen::VectorXd scales = whole ? solved_scales : RowScales(sys, rows);
+  if (rows.empty()) return " none (no equations)";
   Eigen::VectorXd phi;
   CalcPhi(sys, s, &phi);
   std::vector<std::pair<double, int>> r;
@@ -288,6 +296,26 @@ std::vector<double> ContinuationTargets(const Model& model, const std::vector<do
 
 }  // namespace
 
+// Where the continuation to the start values stopped, per moving driver: the last
+// value reached and the one that failed, so the message names the limit's bracket.
+static std::string DescribeReach(const Model& model, const std::vector<double>& from, const std::vector<double>& to,
+                          double reached, double failed) {
+  std::ostringstream o;
+  o.precision(6);
+  for (size_t d = 0; d < model.drivers.size(); ++d) {
+    if (to[d] == from[d]) continue;
+    const bool angle = model.drivers[d].kind == DriverKind::JointRotation || model.drivers[d].kind == DriverKind::BodyRotation;
+    const double unit = angle ? model.units.angle_to_si : model.units.length_to_si;
+    const std::string& name = angle ? model.units.angle_name : model.units.length_name;
+    auto at = [&](double lambda) { return (from[d] + lambda * (to[d] - from[d])) / unit; };
+    o << (o.tellp() > 0 ? "; " : ": ") << "driver `" << model.drivers[d].name << "` wants " << at(1) << " " << name
+      << " at t = start but the mechanism follows it from " << at(0) << " only to " << at(reached) << " " << name
+      << " (fails at " << at(failed) << " " << name
+      << "): a limit of motion or singular position lies between these; start inside the range";
+  }
+  return o.str();
+}
+
 bool ContinueToStart(KinematicsWorkspace& ws, double start, const SolveOptions& solve, SystemState* s,
                      int* iterations, std::string* message) {
   const ConstraintSystem& sys = ws.system();
@@ -319,8 +347,9 @@ bool ContinueToStart(KinematicsWorkspace& ws, double start, const SolveOptions& 
     const SolveSummary r = ws.newton().Solve(o, s);
     *iterations += r.iterations;
     if (!r.success) {
-      *message = "cannot reach the drivers' values at t = start from the design pose (" + r.message +
-                 "); largest residuals:" + DescribeResiduals(sys, *s, ws.active(), ws.newton().scales(), 3);
+      *message = "cannot reach the drivers' values at t = start from the design pose (" + r.message + ")" +
+                 DescribeReach(model, from, to, std::min(1.0, static_cast<double>(k - 1) / substeps), lambda) +
+                 "; largest residuals:" + DescribeResiduals(sys, *s, ws.active(), ws.newton().scales(), 3);
       return false;
     }
     UpdateAngleReferences(sys, s);

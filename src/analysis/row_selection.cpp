@@ -80,14 +80,17 @@ std::string DrivingRefusal(const ConstraintSystem& sys, const RowSelection& sel)
     return m + "\n  The run starts at the design pose: move it off the singular position (e.g. change a joint "
                "angle or a leg length slightly).";
   }
-  if (!sel.conflicting_drivers.empty()) {
+  // The status check reports (JudgeDriving); idle spins are freedoms left.
+  if (!sel.conflicting_drivers.empty() || mob.driving_status == DrivingStatus::Over) {
+    const auto& conflicting = sel.conflicting_drivers.empty() ? mob.conflicting_drivers : sel.conflicting_drivers;
     std::string m = "over-driven: driver(s) ";
-    for (size_t k = 0; k < sel.conflicting_drivers.size(); ++k) m += (k ? ", `" : "`") + sel.conflicting_drivers[k] + "`";
+    for (size_t k = 0; k < conflicting.size(); ++k) m += (k ? ", `" : "`") + conflicting[k] + "`";
     return m + " conflict with the joints or other drivers. Remove or change them (mechkin check names the freedoms).";
   }
   std::string m = "under-driven: " + std::to_string(6 * n - static_cast<int>(sel.active.size())) +
                   " freedom(s) are not driven";
-  for (const auto& f : mob.remaining_freedoms) m += "\n    " + f;
+  for (const auto& f : mob.remaining_freedoms)
+    if (f.rfind("idle, not driven: ", 0) != 0) m += "\n    " + f;
   for (const auto& f : mob.idle) m += "\n    idle: " + f.description;
   return m + "\n  Add drivers, or remove the idle freedoms (see mechkin check).";
 }

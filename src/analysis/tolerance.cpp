@@ -37,6 +37,10 @@ ToleranceColumn LinearStack(const Motion& m, int col, const ToleranceReport& rep
   ToleranceColumn tc;
   tc.name = m.columns()[col].name;
   tc.unit = m.columns()[col].unit;
+  if (m.columns()[col].quantity == Quantity::VelocityRatio && m.layout().options().order == 0) {
+    tc.not_computed = "not computed at order 0: a velocity ratio needs the velocities (order 1 or more)";
+    return tc;
+  }
   std::vector<int> sens;
   for (const auto& p : rep.parameters) sens.push_back(m.layout().Find(tc.name + "/d(" + p + ")"));
   int worst_row = 0;

@@ -40,6 +40,9 @@ struct ToleranceOptions {
 
 struct ToleranceColumn {
   std::string name, unit;
+  // Why the column has no stack-up (a velocity ratio at order 0: no velocities);
+  // empty when it has one. Such a column carries no numbers.
+  std::string not_computed;
   std::vector<double> worst_case, rss;  // per row
   double max_worst_case = 0, t_worst_case = 0, max_rss = 0, t_rss = 0;
   std::vector<std::pair<std::string, double>> contributions;  // |∂o/∂p| τ_p at the worst-case row, largest first

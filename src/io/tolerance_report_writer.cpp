@@ -29,6 +29,10 @@ nlohmann::json ToleranceReportJson(const ToleranceReport& r) {
   j["t"] = r.t;
   j["columns"] = json::array();
   for (const auto& c : r.columns) {
+    if (!c.not_computed.empty()) {
+      j["columns"].push_back({{"name", c.name}, {"unit", c.unit}, {"not_computed", c.not_computed}});
+      continue;
+    }
     json contributions = json::array();
     for (const auto& [name, value] : c.contributions) contributions.push_back({{"parameter", name}, {"contribution", value}});
     json col = {{"name", c.name}, {"unit", c.unit}, {"worst_case", c.worst_case}, {"rss", c.rss},
@@ -55,6 +59,10 @@ void PrintToleranceReport(const ToleranceReport& r, std::ostream& out) {
   out << "  (" << r.t.size() << " rows)\n";
   out << "linear stack-up from the exact sensitivities (worst case = sum |d/dp|·tol; RSS = root-sum-square):\n";
   for (const auto& c : r.columns) {
+    if (!c.not_computed.empty()) {
+      out << "  " << Header(c) << ": " << c.not_computed << "\n";
+      continue;
+    }
     out << "  " << Header(c) << ": worst case " << Num(c.max_worst_case) << " at t = " << Num(c.t_worst_case)
         << " s; RSS " << Num(c.max_rss) << " at t = " << Num(c.t_rss) << " s; contributions:";
     for (const auto& [name, value] : c.contributions)
@@ -67,7 +75,8 @@ void PrintToleranceReport(const ToleranceReport& r, std::ostream& out) {
   if (r.failed_samples > 0) out << ", " << r.failed_samples << " did not complete";
   out << "; linear theory: largest deviation <= worst case, std = RSS/sqrt(3):\n";
   for (const auto& c : r.columns)
-    out << "  " << Header(c) << ": largest deviation " << Num(c.mc_max_deviation) << " at t = " << Num(c.t_mc_max)
+    if (c.not_computed.empty())
+      out << "  " << Header(c) << ": largest deviation " << Num(c.mc_max_deviation) << " at t = " << Num(c.t_mc_max)
         << " s (worst case " << Num(c.max_worst_case) << "); largest std " << Num(c.mc_max_std) << " at t = "
         << Num(c.t_mc_std) << " s (RSS/sqrt(3) " << Num(c.max_rss / std::sqrt(3.0)) << ")\n";
 }

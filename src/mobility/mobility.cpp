@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <set>
 #include <unordered_map>
@@ -378,15 +379,11 @@ void ClassifyDriving(const Model& model, const std::function<Eigen::MatrixXd()>&
   MobilityReport& rep = *rep_ptr;
   const int n = model.num_bodies();
   const int idle = static_cast<int>(rep.idle.size());
-  if (!rep.conflicting_drivers.empty())
-    rep.driving_status = DrivingStatus::Over;
-  else if (rep.dof_after_drivers - idle > 0)
-    rep.driving_status = DrivingStatus::Under;
-  else
-    rep.driving_status = DrivingStatus::Full;
+  rep.driving_status = JudgeDriving(static_cast<int>(rep.conflicting_drivers.size()), rep.dof_after_drivers);
   if (rep.driving_status == DrivingStatus::Under) {
-    // Name the remaining freedoms by the bodies they move most.
-    const Eigen::MatrixXd null_basis = null_basis_of_full();
+    // Name the remaining freedoms by the bodies they move most (the null basis
+    // only when some freedom is not idle: a large model of idle spins skips it).
+    const Eigen::MatrixXd null_basis = rep.dof_after_drivers > idle ? null_basis_of_full() : Eigen::MatrixXd();
     for (int c = 0;
          c < null_basis.cols() && static_cast<int>(rep.remaining_freedoms.size()) < rep.dof_after_drivers - idle;
          ++c) {
@@ -400,18 +397,60 @@ void ClassifyDriving(const Model& model, const std::function<Eigen::MatrixXd()>&
         if (mag > 1e-6 && listed < 4) s += (listed++ ? ", `" : "`") + model.bodies[b].name + "`";
       rep.remaining_freedoms.push_back(s + " is not driven");
     }
+    // The idle spins are freedoms too: a run would have to fix them.
+    for (const auto& f : rep.idle) rep.remaining_freedoms.push_back("idle, not driven: " + f.description);
   }
 }
 
 
+// The freedoms of the bodies left dangling in `model`: trees hanging off the rest
+// by one joint each (peeled leaf by leaf) and bodies with no joint. A tree's joint
+// equations are independent, so it adds 6 − (equations removed) per joint to the
+// mobility whatever the rest does. `*all_dangling` is set when nothing else is left.
+int DanglingFreedoms(const Model& model, bool* all_dangling) {
+  const int n = model.num_bodies();
+  std::vector<std::vector<size_t>> joints_of(n);
+  for (size_t j = 0; j < model.joints.size(); ++j)
+    for (BodyIndex b : {model.joints[j].body1, model.joints[j].body2})
+      if (b != kGround) joints_of[b].push_back(j);
+  std::vector<int> degree(n);
+  std::vector<char> joint_gone(model.joints.size(), 0), body_gone(n, 0);
+  std::vector<int> leaves;
+  for (int b = 0; b < n; ++b)
+    if ((degree[b] = static_cast<int>(joints_of[b].size())) <= 1) leaves.push_back(b);
+  int freedoms = 0, left = n;
+  while (!leaves.empty()) {
+    const int b = leaves.back();
+    leaves.pop_back();
+    if (body_gone[b] || degree[b] > 1) continue;
+    body_gone[b] = 1, --left;
+    if (degree[b] == 0) freedoms += 6;
+    for (size_t j : joints_of[b]) {
+      if (joint_gone[j]) continue;
+      joint_gone[j] = 1;
+      freedoms += 6 - EquationsRemoved(model.joints[j].type);
+      const BodyIndex other = model.joints[j].body1 == b ? model.joints[j].body2 : model.joints[j].body1;
+      if (other != kGround && --degree[other] <= 1) leaves.push_back(other);
+    }
+  }
+  *all_dangling = left == 0;
+  return freedoms;
+}
+
 // Mobility 0 from the joints: name the joints whose removal alone frees the
-// mechanism (dense path; up to 60 joints, one rank each).
+// mechanism (dense path; up to 60 joints, one rank each). Removing a joint always
+// lets what hangs on it dangle (the crank of a Watt II whose second loop is locked);
+// that does not count: a joint is named when, without it, the loops that remain
+// move (mobility beyond the dangling trees' freedoms) or no loop remains.
 void FindLockingJoints(const Model& model, MobilityReport* rep) {
   if (model.joints.size() > 60) return;
   for (size_t j = 0; j < model.joints.size(); ++j) {
     Model without = model;
     without.joints.erase(without.joints.begin() + static_cast<long>(j));
-    if (QuickMobility(without).first > 0) rep->locking_joints.push_back(model.joints[j].name);
+    const int mobility = QuickMobility(without).first;
+    bool no_loop_left = false;
+    const int dangling = DanglingFreedoms(without, &no_loop_left);
+    if (mobility > 0 && (no_loop_left || mobility > dangling)) rep->locking_joints.push_back(model.joints[j].name);
   }
 }
 
@@ -510,16 +549,47 @@ bool RecordAssembly(const SolveSummary& assembled, int equations, MobilityReport
   return true;
 }
 
+// Among the locking joints with an axis (revolute, cylindrical, screw): the one
+// whose axis is off the direction all the others share (a mistyped axis, as in a
+// planar loop with one axis turned), in words; empty when there is no such one.
+std::string OddAxisOut(const Model& model, const std::vector<std::string>& locking) {
+  std::vector<std::pair<std::string, Vec3>> axes;
+  for (const auto& jt : model.joints) {
+    const bool has_axis = jt.type == JointType::Revolute || jt.type == JointType::Cylindrical || jt.type == JointType::Screw;
+    if (!has_axis || std::find(locking.begin(), locking.end(), jt.name) == locking.end()) continue;
+    const Mat3 A = jt.body1 == kGround ? Mat3::Identity() : CalcA(model.bodies[jt.body1].euler);
+    axes.emplace_back(jt.name, (A * jt.frame1.h).normalized());
+  }
+  if (axes.size() < 3) return "";
+  auto parallel = [](const Vec3& a, const Vec3& b) { return a.cross(b).norm() < 1e-9; };
+  for (size_t odd = 0; odd < axes.size(); ++odd) {
+    const Vec3& common = axes[odd == 0 ? 1 : 0].second;
+    bool others_share = true;
+    for (size_t k = 0; k < axes.size() && others_share; ++k)
+      if (k != odd) others_share = parallel(axes[k].second, common);
+    if (!others_share || parallel(axes[odd].second, common)) continue;
+    char angle[32];
+    std::snprintf(angle, sizeof angle, "%.4g", std::acos(std::min(1.0, std::abs(axes[odd].second.dot(common)))) * 180 / M_PI);
+    std::string s = "; the axis of `" + axes[odd].first + "` is " + angle + "° off the axis ";
+    for (size_t k = 0, listed = 0; k < axes.size(); ++k)
+      if (k != odd) s += (listed++ ? ", `" : "`") + axes[k].first + "`";
+    return s + " share: is it mistyped?";
+  }
+  return "";
+}
+
 // Mobility 0 from the joints: the verdict names the joints that lock it.
 void SetLockedVerdict(const Model& model, MobilityReport* rep) {
   rep->locked = true;
   FindLockingJoints(model, rep);
   rep->verdict = "locked by the joints: they allow no motion (mobility 0) before any driver";
   if (!rep->locking_joints.empty()) {
-    rep->verdict += "; removing any one of ";
+    const bool one = rep->locking_joints.size() == 1;
+    rep->verdict += one ? "; removing " : "; removing any one of ";
     for (size_t k = 0; k < rep->locking_joints.size(); ++k)
       rep->verdict += (k ? ", `" : "`") + rep->locking_joints[k] + "`";
-    rep->verdict += " would free it — check their axes and positions";
+    rep->verdict += one ? " would free it — check its axis and position"
+                        : " would free it — check their axes and positions" + OddAxisOut(model, rep->locking_joints);
   }
   if (rep->redundant > 0) rep->verdict_kind = MobilityVerdict::Overconstrained;
 }
@@ -617,6 +687,11 @@ MobilityReport CalcMobility(const Model& model) {
     SetOverconstrainedVerdict(&rep);
   }
   return rep;
+}
+
+DrivingStatus JudgeDriving(int conflicting_drivers, int freedoms_left) {
+  if (conflicting_drivers > 0) return DrivingStatus::Over;
+  return freedoms_left > 0 ? DrivingStatus::Under : DrivingStatus::Full;
 }
 
 const char* DrivingStatusName(DrivingStatus status) {

@@ -21,6 +21,11 @@ constexpr double kRankThreshold = 1e-8;
 enum class DrivingStatus { Full, Under, Over };
 /// "full", "under", "over" (the words of the file's `expect.driven`).
 const char* DrivingStatusName(DrivingStatus status);
+/// The one rule for `check`'s `driven` and `run`'s refusal (constraints.md §6.4):
+/// over when a driver conflicts, else under when any freedom is left after the
+/// drivers — idle freedoms included, since a run solves 6n independent equations
+/// and cannot leave a spin undetermined — else full.
+DrivingStatus JudgeDriving(int conflicting_drivers, int freedoms_left);
 enum class MobilityVerdict { Regular, Overconstrained };
 
 struct RedundantEquation {

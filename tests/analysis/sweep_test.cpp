@@ -91,5 +91,37 @@ TEST(Sweep, FourShardsMergeIntoTheUnshardedResultExactly) {
   EXPECT_NE(why.find("missing shards: 2/4"), std::string::npos) << why;
 }
 
+// Issue 23 item 9, the sweep: the crank = rod slider-crank (L = 19, 20, 21 mm, no
+// offset, 100 steps; the change point at t = 0.25 s on a row) stops there as
+// `singular` at every order 0–4 — never `complete` — with the 25 rows before it
+// on the closed form x = 2L·cos 2πt (its minimum at the last row, t = 0.24 s).
+class SweepCrankEqualsRod : public ::testing::TestWithParam<int> {};
+
+TEST_P(SweepCrankEqualsRod, IsSingularAtTheChangePointAtEveryOrder) {
+  LoadResult loaded = LoadMechanismFile(std::string(MECHKIN_SOURCE_DIR) + "/tests/data/parametric-crank-equals-rod.json");
+  ASSERT_TRUE(loaded.ok());
+  SweepOptions options;
+  options.request.order = GetParam();
+  options.threads = 1;
+  const SweepResult r = RunSweep(*loaded.model, {{{"L", 19}}, {{"L", 20}}, {{"L", 21}}}, options);
+  ASSERT_EQ(r.variants.size(), 3u);
+  ASSERT_EQ(r.columns.front(), "piston.x [mm]");
+  for (const VariantSummary& v : r.variants) {
+    const double L = v.values[0];
+    EXPECT_EQ(v.status, "singular") << L << ": " << v.message;
+    EXPECT_EQ(v.message.rfind("singular position at t = 0.25 s", 0), 0u) << v.message;
+    EXPECT_EQ(v.rows, 25) << L;
+    EXPECT_NEAR(v.t_stop, 0.24, 1e-12) << L;
+    EXPECT_NEAR(v.min[0], 2 * L * std::cos(2 * M_PI * 0.24), 1e-9) << L;
+    EXPECT_NEAR(v.max[0], 2 * L, 1e-9) << L;
+  }
+  // The unit of work the Python binding calls says the same.
+  const VariantSummary one = RunVariant(*loaded.model, {{"L", 20}}, options);
+  EXPECT_EQ(one.status, "singular") << one.message;
+  EXPECT_EQ(one.rows, 25);
+}
+
+INSTANTIATE_TEST_SUITE_P(Orders, SweepCrankEqualsRod, ::testing::Values(0, 1, 2, 3, 4));
+
 }  // namespace
 }  // namespace mechkin
