@@ -40,9 +40,14 @@ bool ParseShard(const std::string& s, SweepOptions* options) {
   return options->shards >= 1 && options->shard >= 1 && options->shard <= options->shards;
 }
 
-bool Write(const SweepCommandOptions& o, const SweepResult& result, std::ostream& out, std::ostream& err) {
+// The summary's destination, opened before the work; every input file is refused as it.
+bool Open(const SweepCommandOptions& o, OutputFile* file, std::ostream& out, std::ostream& err) {
+  return OpenReport(o.output, o.merge ? o.files : std::vector<std::string>{o.files.front()}, "sweep", file, out, err);
+}
+
+bool Write(const SweepCommandOptions& o, const SweepResult& result, OutputFile* file, std::ostream& err) {
   const std::string text = o.format == "json" ? SweepJsonText(result) + "\n" : SweepCsv(result);
-  return WriteReport(o.output, o.merge ? o.files : std::vector<std::string>{o.files.front()}, text, "sweep", out, err);
+  return CommitReport(file, text, "sweep", err);
 }
 
 // The variants: the grid's, or samples within the parameters' ranges.
@@ -73,14 +78,16 @@ bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<Para
 }  // namespace
 
 int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostream& err) {
+  OutputFile file;
   if (o.merge) {
+    if (!Open(o, &file, out, err)) return 1;
     SweepResult merged;
     std::string why;
     if (!MergeSweepFiles(o.files, &merged, &why)) {
       err << "mechkin sweep --merge: " << why << "\n";
       return 1;
     }
-    return Write(o, merged, out, err) ? 0 : 1;
+    return Write(o, merged, &file, err) ? 0 : 1;
   }
   if (o.files.size() != 1) {
     err << "mechkin sweep: give one mechanism file (several files only with --merge)\n";
@@ -97,9 +104,10 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
   if (!model) return 1;
   std::vector<ParameterOverrides> variants;
   if (!Variants(o, *model, &variants, err)) return 2;
+  if (!Open(o, &file, out, err)) return 1;
   options.request = o.request;
   options.threads = o.threads;
-  return Write(o, RunSweep(*model, variants, options), out, err) ? 0 : 1;
+  return Write(o, RunSweep(*model, variants, options), &file, err) ? 0 : 1;
 }
 
 }  // namespace mechkin
