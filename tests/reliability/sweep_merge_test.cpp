@@ -1,0 +1,121 @@
+// Issue 24, `sweep --merge` under damaged shards: every field read is validated
+// (a `min` list longer than `max` read past a heap buffer), and a variant
+// missing, duplicated or out of range is named. Run against the real executable.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace {
+
+using nlohmann::json;
+const std::string kBin = MECHKIN_BINARY;
+const std::string kSlider = std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-slider-crank.json";
+
+struct Result {
+  int code;
+  std::string out;  // stdout and stderr together
+};
+
+Result Mechkin(const std::string& args) {
+  Result r{0, ""};
+  FILE* p = ::popen((kBin + " " + args + " 2>&1").c_str(), "r");
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = ::pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+std::string Dir() {
+  static std::string d = [] {
+    std::string t = ::testing::TempDir() + "/mechkin-merge-XXXXXX";
+    return std::string(::mkdtemp(t.data()));
+  }();
+  return d;
+}
+
+std::string Read(const std::string& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// Shards 1/2 and 2/2 of a 6-variant grid (written once), their paths.
+const std::pair<std::string, std::string>& Shards() {
+  static const std::pair<std::string, std::string> shards = [] {
+    const std::string a = Dir() + "/a.json", b = Dir() + "/b.json";
+    const std::string grid = " --grid crank=30:50:3 --grid rod=110:130:2 --format json -o ";
+    EXPECT_EQ(Mechkin("sweep " + kSlider + grid + a + " --shard 1/2").code, 0);
+    EXPECT_EQ(Mechkin("sweep " + kSlider + grid + b + " --shard 2/2").code, 0);
+    return std::make_pair(a, b);
+  }();
+  return shards;
+}
+
+// Shard 2/2 changed by `edit`, merged with shard 1/2: the result.
+Result MergeEdited(const std::string& name, const std::function<void(json&)>& edit) {
+  json doc = json::parse(Read(Shards().second));
+  edit(doc);
+  const std::string edited = Dir() + "/" + name + ".json";
+  std::ofstream(edited) << doc.dump(1);
+  return Mechkin("sweep --merge " + Shards().first + " " + edited + " -o " + Dir() + "/" + name + ".csv");
+}
+
+TEST(SweepMerge, IntactShardsMergeIntoTheUnshardedSweep) {
+  const Result r = Mechkin("sweep --merge " + Shards().first + " " + Shards().second + " -o " + Dir() + "/merged.csv");
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_EQ(Mechkin("sweep " + kSlider + " --grid crank=30:50:3 --grid rod=110:130:2 -o " + Dir() + "/whole.csv").code, 0);
+  EXPECT_EQ(Read(Dir() + "/merged.csv"), Read(Dir() + "/whole.csv"));
+}
+
+TEST(SweepMerge, AMinListLongerThanMaxIsAnErrorNamingTheFileAndField) {
+  const Result r = MergeEdited("long-min", [](json& d) { d["variants"][1]["min"].push_back(1.5); });
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("long-min.json"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("/variants/1/min: has "), std::string::npos) << r.out;
+  EXPECT_FALSE(std::ifstream(Dir() + "/long-min.csv").good()) << "nothing written";
+  const Result shorter = MergeEdited("short-max", [](json& d) { d["variants"][0]["max"].erase(0); });
+  EXPECT_EQ(shorter.code, 1) << shorter.out;
+  EXPECT_NE(shorter.out.find("/variants/0/max: has "), std::string::npos) << shorter.out;
+}
+
+TEST(SweepMerge, EveryFieldIsValidated) {
+  const std::vector<std::pair<std::function<void(json&)>, std::string>> cases = {
+      {[](json& d) { d["variants"][0]["values"].erase(0); }, "/variants/0/values: has 1 entries"},
+      {[](json& d) { d["variants"][0]["rows"] = "many"; }, "/variants/0/rows: expected an integer"},
+      {[](json& d) { d["variants"][0]["rows"] = 1e300; }, "/variants/0/rows: expected an integer"},
+      {[](json& d) { d["variants"][0]["status"] = 3; }, "/variants/0/status: expected a string"},
+      {[](json& d) { d["variants"][0].erase("t_stop"); }, "/variants/0/t_stop: missing"},
+      {[](json& d) { d["variants"][0]["min"][0] = "x"; }, "/variants/0/min/0: expected a number or null"},
+      {[](json& d) { d["columns"] = 7; }, "/columns: expected a list of names"},
+      {[](json& d) { d["shard"] = 3; }, "/shard: 3 is outside 1..2"},
+      {[](json& d) { d["variants"][0]["variant"] = 99; }, "/variants/0/variant: 99 is outside 0..5"},
+      {[](json& d) { d["variants"][0]["variant"] = 2; }, "/variants/0/variant: 2 does not belong to shard 2/2"},
+  };
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const Result r = MergeEdited("field-" + std::to_string(k), cases[k].first);
+    EXPECT_EQ(r.code, 1) << cases[k].second << "\n" << r.out;
+    EXPECT_NE(r.out.find("field-" + std::to_string(k) + ".json"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(cases[k].second), std::string::npos) << r.out;
+  }
+}
+
+TEST(SweepMerge, MissingAndDuplicatedVariantsAreNamed) {
+  // Shard 2/2 holds variants 1, 3, 5.
+  const Result deleted = MergeEdited("deleted", [](json& d) { d["variants"].erase(1); });
+  EXPECT_EQ(deleted.code, 1) << deleted.out;
+  EXPECT_NE(deleted.out.find("missing variants: 3 (of 0..5)"), std::string::npos) << deleted.out;
+  const Result twice = MergeEdited("twice", [](json& d) { d["variants"][1] = d["variants"][0]; });
+  EXPECT_EQ(twice.code, 1) << twice.out;
+  EXPECT_NE(twice.out.find("variants given twice: 1; missing variants: 3"), std::string::npos) << twice.out;
+}
+
+}  // namespace
