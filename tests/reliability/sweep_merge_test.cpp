@@ -119,3 +119,33 @@ TEST(SweepMerge, MissingAndDuplicatedVariantsAreNamed) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 24, limits up front: a count beyond a stated limit is an argument error
+// (exit 2) naming the limit, before any variant, sample or step is made.
+TEST(SweepLimits, AGridBeyondTheVariantLimitIsAnArgumentError) {
+  for (const std::string& grid : {" --grid crank=30:50:1000000 --grid rod=100:140:1000000",  // 1e12
+                                   " --grid crank=30:50:10001 --grid rod=100:140:10000"}) {  // 1e8 + 1e4
+    const Result r = Mechkin("sweep " + kSlider + grid + " --shard 1/10000");
+    EXPECT_EQ(r.code, 2) << grid << "\n" << r.out;
+    EXPECT_NE(r.out.find("limit of 100000000 variants"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+  }
+}
+
+TEST(SweepLimits, SamplesMonteCarloAndStepsBeyondTheirLimitsAreArgumentErrors) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"sweep " + kSlider + " --samples 100000001", "not in range 1 to 100000000"},
+      {"sweep " + kSlider + " --samples 1e12", "--samples"},
+      {"tolerance " + kSlider + " --monte-carlo 100000001", "not in range 0 to 100000000"},
+      {"range " + kSlider + " --steps 10000001", "not in range 4 to 10000000"},
+  };
+  for (const auto& [args, limit] : cases) {
+    const Result r = Mechkin(args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(limit), std::string::npos) << args << "\n" << r.out;
+  }
+}
+
+}  // namespace

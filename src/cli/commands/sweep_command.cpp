@@ -1,5 +1,7 @@
 #include "cli/commands/sweep_command.hpp"
 
+#include <cstdio>
+
 #include "analysis/sweep.hpp"
 #include "cli/commands/load_for_command.hpp"
 #include "cli/commands/request_options.hpp"
@@ -13,7 +15,7 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
   cmd->add_option("-o,--output", o->output, "Summary file (default: stdout); written atomically");
   cmd->add_option("--format", o->format, "csv, or json (the shard format --merge reads)")
       ->check(CLI::IsMember({"csv", "json"}));
-  cmd->add_option("--grid", o->grid, "NAME=FROM:TO:COUNT, repeatable: the grid of all combinations");
+  cmd->add_option("--grid", o->grid, "NAME=FROM:TO:COUNT, repeatable: the grid of all combinations (at most 1e8)");
   cmd->add_option("--samples", o->samples, "N variants uniform within the parameters' min/max")
       ->check(CLI::Range(1, 100000000));
   cmd->add_option("--seed", o->seed, "Seed of --samples (default 1)");
@@ -26,6 +28,26 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
 }
 
 namespace {
+
+// Variants a sweep accepts (the grid's product or --samples): stated in --help and
+// checked before any variant is made.
+constexpr double kMaxVariants = 100000000;
+
+// The grid's variant count within kMaxVariants; false (why set) beyond it.
+bool GridWithinLimit(const std::vector<GridAxis>& axes, std::string* why) {
+  double product = 1;
+  std::string factors;
+  for (const GridAxis& a : axes) {
+    product *= a.count;
+    factors += (factors.empty() ? "" : " x ") + std::to_string(a.count);
+  }
+  if (product <= kMaxVariants) return true;
+  char count[32];
+  std::snprintf(count, sizeof count, "%.6g", product);
+  *why = "--grid: " + std::string(count) + " variants (" + factors + ") is more than the limit of 100000000 variants: " +
+         "use fewer points per axis or fewer axes";
+  return false;
+}
 
 bool ParseShard(const std::string& s, SweepOptions* options) {
   if (s.empty()) return true;
@@ -69,7 +91,7 @@ bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<Para
       if (!why.empty()) break;
       axes.push_back(a);
     }
-    if (why.empty()) *variants = GridVariants(axes);
+    if (why.empty() && GridWithinLimit(axes, &why)) *variants = GridVariants(axes);
   }
   if (!why.empty()) err << "mechkin sweep: " << why << "\n";
   return why.empty();
