@@ -72,8 +72,9 @@ bool Write(const SweepCommandOptions& o, const SweepResult& result, OutputFile* 
   return CommitReport(file, text, "sweep", err);
 }
 
-// The variants: the grid's, or samples within the parameters' ranges.
-bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<ParameterOverrides>* variants,
+// The shard's variants (only those: a shard's memory follows its share): the
+// grid's, or samples within the parameters' ranges.
+bool Variants(const SweepCommandOptions& o, const Model& model, const SweepOptions& options, ShardVariants* variants,
               std::ostream& err) {
   if (o.grid.empty() == (o.samples == 0)) {
     err << "mechkin sweep: give either --grid NAME=FROM:TO:COUNT (repeatable) or --samples N\n";
@@ -81,7 +82,7 @@ bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<Para
   }
   std::string why;
   if (o.samples > 0) {
-    *variants = SampleVariants(model, o.samples, o.seed, &why);
+    *variants = SampleShard(model, o.samples, o.seed, options.shard, options.shards, &why);
   } else {
     std::vector<GridAxis> axes;
     for (const auto& g : o.grid) {
@@ -91,7 +92,7 @@ bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<Para
       if (!why.empty()) break;
       axes.push_back(a);
     }
-    if (why.empty() && GridWithinLimit(axes, &why)) *variants = GridVariants(axes);
+    if (why.empty() && GridWithinLimit(axes, &why)) *variants = GridShard(axes, options.shard, options.shards);
   }
   if (!why.empty()) err << "mechkin sweep: " << why << "\n";
   return why.empty();
@@ -124,12 +125,12 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
   if (!ParseOverrides(o.set, &overrides, err)) return 2;
   const std::optional<Model> model = LoadForCommand(o.files.front(), err, overrides);
   if (!model) return 1;
-  std::vector<ParameterOverrides> variants;
-  if (!Variants(o, *model, &variants, err)) return 2;
+  ShardVariants variants;
+  if (!Variants(o, *model, options, &variants, err)) return 2;
   if (!Open(o, &file, out, err)) return 1;
   options.request = o.request;
   options.threads = o.threads;
-  return Write(o, RunSweep(*model, variants, options), &file, err) ? 0 : 1;
+  return Write(o, RunSweepShard(*model, variants, options), &file, err) ? 0 : 1;
 }
 
 }  // namespace mechkin
