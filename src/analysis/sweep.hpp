@@ -81,6 +81,9 @@ struct SweepResult {
   int total = 0;                        // variants in the whole sweep
   int shard = 1, shards = 1;
   std::vector<VariantSummary> variants;  // by index
+  // Which sweep this is (the CLI's shards: file hash, variants, overrides, run settings),
+  // as JSON text written and compared by `sweep --merge`; empty: not recorded.
+  std::string identity;
 };
 
 /// Runs the shard's variants on the threads. Throws std::invalid_argument for an

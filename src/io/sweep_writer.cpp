@@ -111,6 +111,10 @@ SweepResult ShardFromJson(const json& doc, int* shard) {
   part.total = Integer(Field(doc, "", "total"), "/total", 0, INT32_MAX);
   part.shards = Integer(Field(doc, "", "shards"), "/shards", 1, INT32_MAX);
   *shard = Integer(Field(doc, "", "shard"), "/shard", 1, part.shards);
+  if (doc.contains("sweep")) {
+    if (!doc["sweep"].is_object()) Bad("/sweep", "expected an object");
+    part.identity = doc["sweep"].dump();
+  }
   const json& variants = Field(doc, "", "variants");
   if (!variants.is_array()) Bad("/variants", "expected a list of variants");
   for (size_t k = 0; k < variants.size(); ++k) {
@@ -137,6 +141,18 @@ bool ReadShard(const std::string& file, json* doc, std::string* error) {
     return false;
   }
   return true;
+}
+
+// The identity keys two shards disagree on ("file differs, set differs").
+std::string IdentityDifference(const std::string& a, const std::string& b) {
+  if (a.empty() || b.empty()) return "one records its sweep, the other does not";
+  const json x = json::parse(a), y = json::parse(b);
+  std::string keys;
+  for (const auto& [key, value] : x.items())
+    if (!y.contains(key) || y.at(key) != value) keys += (keys.empty() ? "" : ", ") + key;
+  for (const auto& [key, value] : y.items())
+    if (!x.contains(key)) keys += (keys.empty() ? "" : ", ") + key;
+  return "they differ in: " + keys;
 }
 
 // After the sort: variants 0..total-1 each exactly once (a shard edited or cut
@@ -172,8 +188,10 @@ json SweepJson(const SweepResult& r) {
                         {"rows", v.rows}, {"t_stop", Number(v.t_stop)}, {"max_condition", Number(v.max_condition)},
                         {"t_max_condition", Number(v.t_max_condition)}, {"min", mins}, {"max", maxs}});
   }
-  return {{"mechkin_sweep", 1}, {"parameters", r.parameters}, {"columns", r.columns}, {"total", r.total},
-          {"shard", r.shard}, {"shards", r.shards}, {"variants", variants}};
+  json doc = {{"mechkin_sweep", 1}, {"parameters", r.parameters}, {"columns", r.columns}, {"total", r.total},
+              {"shard", r.shard}, {"shards", r.shards}, {"variants", variants}};
+  if (!r.identity.empty()) doc["sweep"] = json::parse(r.identity);
+  return doc;
 }
 
 std::string SweepCsv(const SweepResult& r) {
@@ -213,6 +231,12 @@ bool MergeSweepFiles(const std::vector<std::string>& files, SweepResult* merged,
       *error = "'" + files[f] + "' is a shard of another sweep (parameters, columns or variant count differ)";
       return false;
     }
+    if (f == 0) merged->identity = part.identity;
+    if (part.identity != merged->identity) {
+      *error = "'" + files[f] + "' is a shard of another sweep than '" + files[0] + "' (" +
+               IdentityDifference(merged->identity, part.identity) + "): merge shards of one sweep command";
+      return false;
+    }
     if (!shards_seen.insert(shard).second) {
       *error = "shard " + std::to_string(shard) + " is given twice ('" + files[f] + "')";
       return false;
@@ -230,6 +254,21 @@ bool MergeSweepFiles(const std::vector<std::string>& files, SweepResult* merged,
             [](const VariantSummary& a, const VariantSummary& b) { return a.index < b.index; });
   merged->shards = 1;
   return EveryVariantOnce(*merged, error);
+}
+
+std::string SweepIdentityText(const SweepIdentity& identity) {
+  std::ifstream in(identity.file, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  uint64_t hash = 14695981039346656037ull;  // FNV-1a 64: an identity check, not a security one
+  for (const unsigned char c : bytes.str()) hash = (hash ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  json id = {{"file_fnv1a", hex}, {"order", identity.order}, {"tolerance", identity.tolerance},
+             {"solver", identity.solver}, {"set", identity.set}};
+  if (identity.samples > 0) id["samples"] = {{"count", identity.samples}, {"seed", identity.seed}};
+  else id["grid"] = identity.grid;
+  return id.dump();
 }
 
 std::string SweepJsonText(const SweepResult& x) { return SweepJson(x).dump(1); }

@@ -187,3 +187,30 @@ TEST(SweepLimits, ShardedSamplesMergeIntoTheUnshardedSweep) {
 }
 
 }  // namespace
+
+namespace {
+
+// Shards carry their sweep's identity: merging shards of different sweeps (another
+// grid of the same size, another version of the file, other --set or --tol) is refused.
+TEST(SweepMerge, ShardsOfDifferentSweepsAreRefused) {
+  const std::string copy = Dir() + "/copy.json", edited = Dir() + "/edited.json";
+  std::ofstream(copy) << Read(kSlider);
+  std::ofstream(edited) << Read(kSlider) << "\n";  // another version: one more byte
+  const std::string grid = " --grid crank=30:50:3 --grid rod=110:130:2 --format json --shard 2/2 -o ";
+  const std::vector<std::pair<std::string, std::string>> others = {
+      {copy + " --grid crank=30:50:3 --grid rod=110:131:2 --format json --shard 2/2", "grid"},
+      {edited + grid.substr(0, grid.size() - 4), "file_fnv1a"},
+      {copy + grid.substr(0, grid.size() - 4) + " --set offset=12", "set"},
+      {copy + grid.substr(0, grid.size() - 4) + " --tol 1e-9", "tolerance"},
+  };
+  for (size_t k = 0; k < others.size(); ++k) {
+    const std::string shard = Dir() + "/other-" + std::to_string(k) + ".json";
+    ASSERT_EQ(Mechkin("sweep " + others[k].first + " -o " + shard).code, 0) << others[k].first;
+    const Result r = Mechkin("sweep --merge " + Shards().first + " " + shard);
+    EXPECT_EQ(r.code, 1) << others[k].first << "\n" << r.out;
+    EXPECT_NE(r.out.find("is a shard of another sweep"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("they differ in: " + others[k].second), std::string::npos) << r.out;
+  }
+}
+
+}  // namespace

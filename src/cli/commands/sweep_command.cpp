@@ -130,7 +130,11 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
   if (!Open(o, &file, out, err)) return 1;
   options.request = o.request;
   options.threads = o.threads;
-  return Write(o, RunSweepShard(*model, variants, options), &file, err) ? 0 : 1;
+  SweepResult result = RunSweepShard(*model, variants, options);
+  if (o.format == "json")
+    result.identity = SweepIdentityText({o.files.front(), o.request.order, o.request.tolerance,
+                                         static_cast<int>(o.request.solver), overrides, o.grid, o.samples, o.seed});
+  return Write(o, result, &file, err) ? 0 : 1;
 }
 
 }  // namespace mechkin
