@@ -396,12 +396,12 @@ class Motion:
         return df
 
     def to_csv(self, path):
-        """Writes the same CSV as `mechkin run -o path` (atomically)."""
-        self._core.write(str(path), "csv")
+        """Writes the same CSV as `mechkin run -o path` (atomically); never onto the model's file."""
+        self._core.write(str(path), "csv", [self.model._core.source])
 
     def to_json(self, path):
-        """Writes the same JSON as `mechkin run --format json -o path` (atomically)."""
-        self._core.write(str(path), "json")
+        """Writes the same JSON as `mechkin run --format json -o path` (atomically); never onto the model's file."""
+        self._core.write(str(path), "json", [self.model._core.source])
 
     def __reduce__(self):
         o = self._options

@@ -286,13 +286,15 @@ py::array Values(py::object self) {
   return a;
 }
 
-void ToTable(const PyMotion& pm, const std::string& path, const std::string& format) {
+// `inputs`: files the table must not overwrite (the model's own file).
+void ToTable(const PyMotion& pm, const std::string& path, const std::string& format,
+             const std::vector<std::string>& inputs) {
   const TableFormat table_format = NamedOrThrow<TableFormat>("format", format);
   std::string why;
   bool ok;
   {
     py::gil_scoped_release release;
-    ok = WriteMotion(*pm.motion, table_format, path, &why);
+    ok = WriteMotion(*pm.motion, table_format, path, &why, inputs);
   }
   if (!ok) throw std::runtime_error(why);
 }
@@ -395,7 +397,7 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def_property_readonly("values", &Values)
       .def("columns", &Columns)
       .def("report", &Report)
-      .def("write", &ToTable, py::arg("path"), py::arg("format") = "csv")
+      .def("write", &ToTable, py::arg("path"), py::arg("format") = "csv", py::arg("inputs") = std::vector<std::string>{})
       .def_property_readonly("order", [](const PyMotion& m) { return m.motion->layout().options().order; })
       .def_property_readonly("si", [](const PyMotion& m) { return m.motion->layout().options().si; })
       .def_property_readonly("forces", [](const PyMotion& m) { return m.motion->layout().options().forces; });

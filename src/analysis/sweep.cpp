@@ -66,7 +66,65 @@ std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, un
 
 namespace {
 
+// The grid variant number `index` (row-major, the last axis fastest), as GridVariants makes it.
+ParameterOverrides GridVariant(const std::vector<GridAxis>& axes, long long index) {
+  std::vector<int> digit(axes.size());
+  for (size_t a = axes.size(); a-- > 0;) {
+    digit[a] = static_cast<int>(index % axes[a].count);
+    index /= axes[a].count;
+  }
+  ParameterOverrides v;
+  for (size_t a = 0; a < axes.size(); ++a) {
+    const GridAxis& g = axes[a];
+    const int k = digit[a];
+    v[g.parameter] = g.count == 1 ? g.from : g.from + (g.to - g.from) * k / (g.count - 1);
+  }
+  return v;
+}
+
+std::vector<std::string> KeysOf(const ParameterOverrides& v) {
+  std::vector<std::string> keys;
+  for (const auto& kv : v) keys.push_back(kv.first);
+  return keys;
+}
+
 }  // namespace
+
+ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards) {
+  ShardVariants out;
+  long long total = 1;
+  for (const GridAxis& a : axes) total *= a.count;  // the caller bounds it (1e8)
+  out.total = static_cast<int>(total);
+  out.parameters = KeysOf(GridVariant(axes, 0));
+  for (long long i = shard - 1; i < total; i += shards) {
+    out.indices.push_back(static_cast<int>(i));
+    out.variants.push_back(GridVariant(axes, i));
+  }
+  return out;
+}
+
+ShardVariants SampleShard(const Model& model, int count, unsigned long seed, int shard, int shards, std::string* error) {
+  ShardVariants out;
+  std::vector<const Parameter*> ranged;
+  for (const auto& p : model.parameters)
+    if (p.min && p.max) ranged.push_back(&p);
+  if (ranged.empty()) {
+    *error = "no parameter declares a range: write e.g. \"crank\": {\"value\": 40, \"min\": 30, \"max\": 50}";
+    return out;
+  }
+  out.total = count;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  ParameterOverrides v;
+  for (int i = 0; i < count; ++i) {
+    for (const Parameter* p : ranged) v[p->name] = *p->min + (*p->max - *p->min) * unit(rng);  // as SampleVariants
+    if (i % shards != shard - 1) continue;
+    out.indices.push_back(i);
+    out.variants.push_back(v);
+  }
+  out.parameters = KeysOf(v);
+  return out;
+}
 
 RunRequest VariantRequest(const Model& model, const RunRequest& request) {
   RunRequest r = request;
@@ -160,22 +218,30 @@ VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, 
 }
 
 SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& variants, const SweepOptions& options) {
+  ShardVariants shard;
+  shard.total = static_cast<int>(variants.size());
+  if (!variants.empty()) shard.parameters = KeysOf(variants.front());
+  for (int i = 0; i < shard.total; ++i)
+    if (i % options.shards == options.shard - 1) {
+      shard.indices.push_back(i);
+      shard.variants.push_back(variants[i]);
+    }
+  return RunSweepShard(model, shard, options);
+}
+
+SweepResult RunSweepShard(const Model& model, const ShardVariants& shard, const SweepOptions& options) {
   SweepResult result;
-  result.total = static_cast<int>(variants.size());
+  result.total = shard.total;
   result.shard = options.shard;
   result.shards = options.shards;
-  if (!variants.empty())
-    for (const auto& kv : variants.front()) result.parameters.push_back(kv.first);
+  result.parameters = shard.parameters;
   std::string why;
   if (!options.request.IsValid(&why)) throw std::invalid_argument(why);
   result.columns = SweepColumns(model, options.request.order);
-  std::vector<int> mine;
-  for (int i = 0; i < result.total; ++i)
-    if (i % options.shards == options.shard - 1) mine.push_back(i);
-  result.variants.resize(mine.size());
-  ParallelFor(static_cast<int>(mine.size()), options.threads, [&](int k, int) {
-    result.variants[k] = RunVariant(model, variants[mine[k]], options);
-    result.variants[k].index = mine[k];
+  result.variants.resize(shard.indices.size());
+  ParallelFor(static_cast<int>(shard.indices.size()), options.threads, [&](int k, int) {
+    result.variants[k] = RunVariant(model, shard.variants[k], options);
+    result.variants[k].index = shard.indices[k];
   });
   return result;
 }

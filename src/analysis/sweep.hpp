@@ -34,6 +34,20 @@ std::vector<ParameterOverrides> GridVariants(const std::vector<GridAxis>& axes);
 /// Empty with `error` set when no parameter declares a range.
 std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, unsigned long seed, std::string* error);
 
+/// One shard's variants alone (index ≡ shard−1 mod shards), so that memory follows
+/// the shard's share, not the sweep's size.
+struct ShardVariants {
+  int total = 0;                         // variants in the whole sweep
+  std::vector<std::string> parameters;   // the varied parameters (the overrides' keys)
+  std::vector<int> indices;              // ascending
+  std::vector<ParameterOverrides> variants;  // per index, equal to GridVariants'/SampleVariants' entry
+};
+/// The grid's variants of shard `shard`/`shards`, each made from its index.
+ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards);
+/// The samples of shard `shard`/`shards`: the seeded stream drawn through once and
+/// only the shard's kept. Empty with `error` set when no parameter declares a range.
+ShardVariants SampleShard(const Model& model, int count, unsigned long seed, int shard, int shards, std::string* error);
+
 struct SweepOptions {
   // Every variant's run: order (derivative orders summarised, default 1), tolerance,
   // solver. The columns are the sweep's (the outputs, or the bodies of a file without
@@ -67,11 +81,17 @@ struct SweepResult {
   int total = 0;                        // variants in the whole sweep
   int shard = 1, shards = 1;
   std::vector<VariantSummary> variants;  // by index
+  // Which sweep this is (the CLI's shards: file hash, variants, overrides, run settings),
+  // as JSON text written and compared by `sweep --merge`; empty: not recorded.
+  std::string identity;
 };
 
 /// Runs the shard's variants on the threads. Throws std::invalid_argument for an
 /// invalid options.request (RunRequest::IsValid).
 SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& variants, const SweepOptions& options);
+/// Runs a shard's variants (options.shard/shards say which shard they are): the
+/// result RunSweep gives for the whole list with the same options.
+SweepResult RunSweepShard(const Model& model, const ShardVariants& shard, const SweepOptions& options);
 /// The run a variant does: the request's order, tolerance and solver; the outputs'
 /// columns (no outputs: the bodies'), no forces, no sensitivities.
 RunRequest VariantRequest(const Model& model, const RunRequest& request);

@@ -140,7 +140,7 @@ void Put32(std::string* s, uint32_t v) { s->append(reinterpret_cast<const char*>
 
 }  // namespace
 
-bool WriteGltf(const Model& model, const Motion& motion, const std::string& path, std::string* error) {
+bool WriteGltf(const Model& model, const Motion& motion, const std::string& path, OutputFile* file, std::string* error) {
   json doc = {{"asset", {{"version", "2.0"}, {"generator", "mechkin"}}}, {"scene", 0}, {"nodes", json::array()},
               {"meshes", json::array()}, {"materials", json::array()}, {"accessors", json::array()},
               {"bufferViews", json::array()}};
@@ -187,7 +187,8 @@ bool WriteGltf(const Model& model, const Motion& motion, const std::string& path
   } else {
     out = doc.dump(1) + "\n";
   }
-  return WriteFileAtomically(path, out, error);
+  file->Write(out);
+  return file->Commit("", error);
 }
 
 }  // namespace mechkin

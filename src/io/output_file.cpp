@@ -47,12 +47,61 @@ std::string BaseOf(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
+// A file's identity: its device and inode when it exists, and its canonical path
+// (the real folder plus the name when the file does not exist yet).
+struct FileIdentity {
+  bool exists = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+  std::string canonical;
+};
+
+FileIdentity IdentityOf(const std::string& path) {
+  FileIdentity id;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    id.exists = true;
+    id.device = st.st_dev;
+    id.inode = st.st_ino;
+  }
+  id.canonical = RealPath(path);
+  if (id.canonical.empty()) {
+    const std::string folder = RealPath(DirectoryOf(path));
+    id.canonical = folder.empty() ? path : folder + "/" + BaseOf(path);
+  }
+  return id;
+}
+
+bool IsInput(const std::string& target, const std::string& input) {
+  struct stat t {}, in {};
+  return ::stat(target.c_str(), &t) == 0 && ::stat(input.c_str(), &in) == 0 && t.st_dev == in.st_dev &&
+         t.st_ino == in.st_ino;
+}
+
 }  // namespace
+
+bool SameFile(const std::string& a, const std::string& b) {
+  const FileIdentity x = IdentityOf(a), y = IdentityOf(b);
+  if (x.exists && y.exists) return x.device == y.device && x.inode == y.inode;
+  return x.canonical == y.canonical;
+}
+
+bool DistinctOutputs(const std::vector<std::string>& paths, const std::vector<std::string>& options, std::string* error) {
+  for (size_t i = 0; i < paths.size(); ++i)
+    for (size_t k = i + 1; k < paths.size(); ++k) {
+      if (paths[i].empty() || paths[i] == "-" || paths[k].empty() || paths[k] == "-") continue;
+      if (!SameFile(paths[i], paths[k])) continue;
+      *error = options[i] + " '" + paths[i] + "' and " + options[k] + " '" + paths[k] +
+               "' are the same file: one would overwrite the other; give two different paths";
+      return false;
+    }
+  return true;
+}
 
 OutputFile::~OutputFile() { Abort(); }
 
 bool OutputFile::Open(const std::string& path, const std::vector<std::string>& inputs, std::string* error,
-                      std::ostream* standard_output) {
+                      std::ostream* standard_output, const std::string& what) {
   buffer_.reserve(kBufferSize);
   if (path.empty() || path == "-") {
     to_stdout_ = true;
@@ -65,8 +114,8 @@ bool OutputFile::Open(const std::string& path, const std::vector<std::string>& i
   }
   const std::string real = RealPath(path);
   for (const auto& in : inputs)
-    if (!real.empty() && real == RealPath(in)) {
-      *error = "refusing to write the table onto the input file '" + in + "': choose another output path";
+    if (!in.empty() && in != "-" && IsInput(path, in)) {
+      *error = "refusing to write " + what + " onto the input file '" + in + "': choose another output path";
       return false;
     }
   struct stat st {};

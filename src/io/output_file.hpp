@@ -25,9 +25,11 @@ class OutputFile {
   ~OutputFile();  // removes the temporary file unless committed
 
   /// `path` empty or "-" = the stream `standard_output` (checked after flushing).
-  /// `inputs`: files the target must not be.
+  /// `inputs`: files the target must not be (compared by device and inode, so a
+  /// symlink or a hard link to an input is refused too). `what` names the content
+  /// in that refusal ("the table", "the page").
   bool Open(const std::string& path, const std::vector<std::string>& inputs, std::string* error,
-            std::ostream* standard_output = nullptr);
+            std::ostream* standard_output = nullptr, const std::string& what = "the table");
   /// Buffered; false once any write has failed.
   bool Write(const char* data, size_t size);
   bool Write(const std::string& s) { return Write(s.data(), s.size()); }
@@ -57,4 +59,11 @@ class OutputFile {
 namespace mechkin {
 /// Writes `content` to `path` through OutputFile (never half written).
 bool WriteFileAtomically(const std::string& path, const std::string& content, std::string* error);
+/// True when `a` and `b` name one file: the same inode when both exist, else the
+/// same canonical path (a file not yet written, reached through a linked folder).
+bool SameFile(const std::string& a, const std::string& b);
+/// The destinations of one command must be distinct files: false (and *error naming
+/// the two options) when two are one. `paths[i]` is given by option `options[i]`;
+/// empty paths and "-" (the standard output) are skipped.
+bool DistinctOutputs(const std::vector<std::string>& paths, const std::vector<std::string>& options, std::string* error);
 }  // namespace mechkin

@@ -87,9 +87,10 @@ bool TableWriter::Finish(const std::string& partial_note, std::string* error) {
   return file_->Commit("", error);
 }
 
-bool WriteMotion(const Motion& motion, TableFormat format, const std::string& path, std::string* error) {
+bool WriteMotion(const Motion& motion, TableFormat format, const std::string& path, std::string* error,
+                 const std::vector<std::string>& inputs) {
   OutputFile file;
-  if (!file.Open(path, {}, error)) return false;
+  if (!file.Open(path, inputs, error)) return false;
   TableWriter writer(motion.layout(), format, &file);
   for (int r = 0; r < motion.rows(); ++r) writer.Append(&motion.values()[static_cast<size_t>(r) * motion.cols()], motion.cols());
   return writer.Finish(motion.complete ? "" : motion.stop.Summary(), error);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "analysis/enum_names.hpp"  // TableFormat
 #include "analysis/motion.hpp"
@@ -33,7 +34,8 @@ class TableWriter : public RowSink {
 };
 
 /// Writes a whole Motion (the Python package's to_csv, tests) to `path`.
-bool WriteMotion(const Motion& motion, TableFormat format, const std::string& path, std::string* error);
+bool WriteMotion(const Motion& motion, TableFormat format, const std::string& path, std::string* error,
+                 const std::vector<std::string>& inputs = {});
 
 /// Escapes text for a CSV cell (quoted when it holds a comma, quote or newline).
 std::string CsvCell(const std::string& text);

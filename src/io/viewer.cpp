@@ -442,17 +442,20 @@ std::string DefaultThreeJsDir() {
   return env && *env ? env : "/usr/share/javascript/three";
 }
 
-bool WriteViewerHtml(const Model& model, const Motion& motion, const SceneOptions& options, const std::string& path,
+bool WriteViewerHtml(const Model& model, const Motion& motion, const SceneOptions& options, OutputFile* page,
                      std::string* error) {
   const std::string dir = options.three_js_dir.empty() ? DefaultThreeJsDir() : options.three_js_dir;
   std::string three, orbit;
   if (!ReadText(dir + "/three.min.js", &three) || !ReadText(dir + "/examples/js/controls/OrbitControls.js", &orbit)) {
     *error = "three.js not found in " + dir + ": install Debian's libjs-three (apt-get install libjs-three)";
+    page->Abort();
     return false;
   }
-  if (options.plots.empty() && !CheckPlots(motion, model.view.plots, "/view/plots", error)) return false;
-  OutputFile file;
-  if (!file.Open(path, {}, error)) return false;
+  if (options.plots.empty() && !CheckPlots(motion, model.view.plots, "/view/plots", error)) {
+    page->Abort();
+    return false;
+  }
+  OutputFile& file = *page;
   file.Write(kPageHead);
   file.Write(XmlEscape("mechkin: " + (model.name.empty() ? model.source : model.name)));
   file.Write(kPageStyle);

@@ -32,11 +32,15 @@ bool ParsePlots(const Motion& motion, const std::string& spec, std::vector<std::
 bool CheckPlots(const Motion& motion, const std::vector<std::vector<std::string>>& panels, const std::string& where,
                 std::string* error);
 
-/// The Motion must hold every body (TableOptions::all_bodies).
-bool WriteViewerHtml(const Model& model, const Motion& motion, const SceneOptions& options, const std::string& path,
+class OutputFile;
+
+/// The Motion must hold every body (TableOptions::all_bodies). `page`: opened
+/// (io/output_file.hpp) before the work; committed here, dropped on an error.
+bool WriteViewerHtml(const Model& model, const Motion& motion, const SceneOptions& options, OutputFile* page,
                      std::string* error);
-/// .glb (binary) or .gltf (JSON with the buffer embedded), lengths in metres.
-bool WriteGltf(const Model& model, const Motion& motion, const std::string& path, std::string* error);
+/// .glb (binary) or .gltf (JSON with the buffer embedded), lengths in metres;
+/// `path` says which (its extension), `file` (opened on it) receives it.
+bool WriteGltf(const Model& model, const Motion& motion, const std::string& path, OutputFile* file, std::string* error);
 
 /// Default location of Debian's libjs-three.
 std::string DefaultThreeJsDir();

@@ -31,6 +31,15 @@ int RunBenchCommand(const BenchCommandOptions& o, std::ostream& out, std::ostrea
     err << o.file << ": no 'analysis' block to benchmark\n";
     return 1;
   }
+  // The destinations first: neither an input nor each other, writable, before the measurements.
+  OutputFile csv_file, svg_file;
+  std::string why;
+  const std::vector<std::string> inputs{o.file, o.reference};
+  if (!DistinctOutputs({o.csv, o.svg}, {"--csv", "--svg"}, &why) ||
+      !csv_file.Open(o.csv, inputs, &why, &out, "the grid") || !svg_file.Open(o.svg, inputs, &why, &out, "the plot")) {
+    err << "mechkin bench: " << why << "\n";
+    return 1;
+  }
   ReferenceTable reference;
   try {
     if (!o.reference.empty()) {
@@ -58,8 +67,9 @@ int RunBenchCommand(const BenchCommandOptions& o, std::ostream& out, std::ostrea
   std::ostringstream csv, svg;
   WriteBenchCsv(results, csv);
   WriteBenchSvg(results, "mechkin bench: " + (model.name.empty() ? o.file : model.name), svg);
-  std::string why;
-  if (!WriteFileAtomically(o.csv, csv.str(), &why) || !WriteFileAtomically(o.svg, svg.str(), &why)) {
+  csv_file.Write(csv.str());
+  svg_file.Write(svg.str());
+  if (!csv_file.Commit("", &why) || !svg_file.Commit("", &why)) {
     err << "mechkin bench: " << why << "\n";
     return 1;
   }

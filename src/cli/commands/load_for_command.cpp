@@ -29,6 +29,22 @@ bool WriteReport(const std::string& path, const std::vector<std::string>& inputs
   return true;
 }
 
+bool OpenReport(const std::string& path, const std::vector<std::string>& inputs, const std::string& command,
+                OutputFile* file, std::ostream& out, std::ostream& err) {
+  std::string why;
+  if (file->Open(path, inputs, &why, &out)) return true;
+  err << "mechkin " << command << ": " << why << "\n";
+  return false;
+}
+
+bool CommitReport(OutputFile* file, const std::string& text, const std::string& command, std::ostream& err) {
+  std::string why;
+  file->Write(text);  // a failed write makes Commit fail with its errno text
+  if (file->Commit("", &why)) return true;
+  err << "mechkin " << command << ": " << why << "\n";
+  return false;
+}
+
 bool ParseOverrides(const std::vector<std::string>& settings, ParameterOverrides* out, std::ostream& err) {
   for (const auto& s : settings) {
     const auto eq = s.find('=');

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/load.hpp"
+#include "io/output_file.hpp"
 
 namespace mechkin {
 
@@ -20,6 +21,12 @@ std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err,
 /// prints "mechkin COMMAND: why" and returns false. `inputs`: files it must not overwrite.
 bool WriteReport(const std::string& path, const std::vector<std::string>& inputs, const std::string& text,
                  const std::string& command, std::ostream& out, std::ostream& err);
+/// The report's destination opened before the work (refused: an input, a
+/// directory, an unwritable folder); "mechkin COMMAND: why" printed on failure.
+bool OpenReport(const std::string& path, const std::vector<std::string>& inputs, const std::string& command,
+                OutputFile* file, std::ostream& out, std::ostream& err);
+/// Writes the finished report into a file OpenReport opened, atomically.
+bool CommitReport(OutputFile* file, const std::string& text, const std::string& command, std::ostream& err);
 /// Reads "--set NAME=NUMBER" options; false (the problem printed) for a malformed one.
 bool ParseOverrides(const std::vector<std::string>& settings, ParameterOverrides* out, std::ostream& err);
 

@@ -30,6 +30,8 @@ int RunRangeCommand(const RangeCommandOptions& o, std::ostream& out, std::ostrea
   if (!ParseOverrides(o.set, &overrides, err)) return 2;
   const std::optional<Model> model = LoadForCommand(o.file, err, overrides);
   if (!model) return 1;
+  OutputFile file;  // the destination first: a refused or unwritable path fails before the work
+  if (!OpenReport(o.output, {o.file}, "range", &file, out, err)) return 1;
   RangeOptions options;
   options.driver = o.driver;
   options.steps = o.steps;
@@ -43,7 +45,7 @@ int RunRangeCommand(const RangeCommandOptions& o, std::ostream& out, std::ostrea
   std::ostringstream text;
   if (o.format == "json") text << RangeReportJsonText(report) << "\n";
   else PrintRangeReport(report, text);
-  if (!WriteReport(o.output, {o.file}, text.str(), "range", out, err)) return 1;
+  if (!CommitReport(&file, text.str(), "range", err)) return 1;
   return 0;
 }
 

@@ -1,5 +1,7 @@
 #include "cli/commands/sweep_command.hpp"
 
+#include <cstdio>
+
 #include "analysis/sweep.hpp"
 #include "cli/commands/load_for_command.hpp"
 #include "cli/commands/request_options.hpp"
@@ -13,7 +15,7 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
   cmd->add_option("-o,--output", o->output, "Summary file (default: stdout); written atomically");
   cmd->add_option("--format", o->format, "csv, or json (the shard format --merge reads)")
       ->check(CLI::IsMember({"csv", "json"}));
-  cmd->add_option("--grid", o->grid, "NAME=FROM:TO:COUNT, repeatable: the grid of all combinations");
+  cmd->add_option("--grid", o->grid, "NAME=FROM:TO:COUNT, repeatable: the grid of all combinations (at most 1e8)");
   cmd->add_option("--samples", o->samples, "N variants uniform within the parameters' min/max")
       ->check(CLI::Range(1, 100000000));
   cmd->add_option("--seed", o->seed, "Seed of --samples (default 1)");
@@ -26,6 +28,26 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
 }
 
 namespace {
+
+// Variants a sweep accepts (the grid's product or --samples): stated in --help and
+// checked before any variant is made.
+constexpr double kMaxVariants = 100000000;
+
+// The grid's variant count within kMaxVariants; false (why set) beyond it.
+bool GridWithinLimit(const std::vector<GridAxis>& axes, std::string* why) {
+  double product = 1;
+  std::string factors;
+  for (const GridAxis& a : axes) {
+    product *= a.count;
+    factors += (factors.empty() ? "" : " x ") + std::to_string(a.count);
+  }
+  if (product <= kMaxVariants) return true;
+  char count[32];
+  std::snprintf(count, sizeof count, "%.6g", product);
+  *why = "--grid: " + std::string(count) + " variants (" + factors + ") is more than the limit of 100000000 variants: " +
+         "use fewer points per axis or fewer axes";
+  return false;
+}
 
 bool ParseShard(const std::string& s, SweepOptions* options) {
   if (s.empty()) return true;
@@ -40,13 +62,19 @@ bool ParseShard(const std::string& s, SweepOptions* options) {
   return options->shards >= 1 && options->shard >= 1 && options->shard <= options->shards;
 }
 
-bool Write(const SweepCommandOptions& o, const SweepResult& result, std::ostream& out, std::ostream& err) {
-  const std::string text = o.format == "json" ? SweepJsonText(result) + "\n" : SweepCsv(result);
-  return WriteReport(o.output, o.merge ? o.files : std::vector<std::string>{o.files.front()}, text, "sweep", out, err);
+// The summary's destination, opened before the work; every input file is refused as it.
+bool Open(const SweepCommandOptions& o, OutputFile* file, std::ostream& out, std::ostream& err) {
+  return OpenReport(o.output, o.merge ? o.files : std::vector<std::string>{o.files.front()}, "sweep", file, out, err);
 }
 
-// The variants: the grid's, or samples within the parameters' ranges.
-bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<ParameterOverrides>* variants,
+bool Write(const SweepCommandOptions& o, const SweepResult& result, OutputFile* file, std::ostream& err) {
+  const std::string text = o.format == "json" ? SweepJsonText(result) + "\n" : SweepCsv(result);
+  return CommitReport(file, text, "sweep", err);
+}
+
+// The shard's variants (only those: a shard's memory follows its share): the
+// grid's, or samples within the parameters' ranges.
+bool Variants(const SweepCommandOptions& o, const Model& model, const SweepOptions& options, ShardVariants* variants,
               std::ostream& err) {
   if (o.grid.empty() == (o.samples == 0)) {
     err << "mechkin sweep: give either --grid NAME=FROM:TO:COUNT (repeatable) or --samples N\n";
@@ -54,7 +82,7 @@ bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<Para
   }
   std::string why;
   if (o.samples > 0) {
-    *variants = SampleVariants(model, o.samples, o.seed, &why);
+    *variants = SampleShard(model, o.samples, o.seed, options.shard, options.shards, &why);
   } else {
     std::vector<GridAxis> axes;
     for (const auto& g : o.grid) {
@@ -64,7 +92,7 @@ bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<Para
       if (!why.empty()) break;
       axes.push_back(a);
     }
-    if (why.empty()) *variants = GridVariants(axes);
+    if (why.empty() && GridWithinLimit(axes, &why)) *variants = GridShard(axes, options.shard, options.shards);
   }
   if (!why.empty()) err << "mechkin sweep: " << why << "\n";
   return why.empty();
@@ -73,14 +101,16 @@ bool Variants(const SweepCommandOptions& o, const Model& model, std::vector<Para
 }  // namespace
 
 int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostream& err) {
+  OutputFile file;
   if (o.merge) {
+    if (!Open(o, &file, out, err)) return 1;
     SweepResult merged;
     std::string why;
     if (!MergeSweepFiles(o.files, &merged, &why)) {
       err << "mechkin sweep --merge: " << why << "\n";
       return 1;
     }
-    return Write(o, merged, out, err) ? 0 : 1;
+    return Write(o, merged, &file, err) ? 0 : 1;
   }
   if (o.files.size() != 1) {
     err << "mechkin sweep: give one mechanism file (several files only with --merge)\n";
@@ -95,11 +125,16 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
   if (!ParseOverrides(o.set, &overrides, err)) return 2;
   const std::optional<Model> model = LoadForCommand(o.files.front(), err, overrides);
   if (!model) return 1;
-  std::vector<ParameterOverrides> variants;
-  if (!Variants(o, *model, &variants, err)) return 2;
+  ShardVariants variants;
+  if (!Variants(o, *model, options, &variants, err)) return 2;
+  if (!Open(o, &file, out, err)) return 1;
   options.request = o.request;
   options.threads = o.threads;
-  return Write(o, RunSweep(*model, variants, options), out, err) ? 0 : 1;
+  SweepResult result = RunSweepShard(*model, variants, options);
+  if (o.format == "json")
+    result.identity = SweepIdentityText({o.files.front(), o.request.order, o.request.tolerance,
+                                         static_cast<int>(o.request.solver), overrides, o.grid, o.samples, o.seed});
+  return Write(o, result, &file, err) ? 0 : 1;
 }
 
 }  // namespace mechkin

@@ -31,6 +31,8 @@ int RunToleranceCommand(const ToleranceCommandOptions& o, std::ostream& out, std
   if (!ParseOverrides(o.set, &overrides, err)) return 2;
   const std::optional<Model> model = LoadForCommand(o.file, err, overrides);
   if (!model) return 1;
+  OutputFile file;  // the destination first: a refused or unwritable path fails before the work
+  if (!OpenReport(o.output, {o.file}, "tolerance", &file, out, err)) return 1;
   ToleranceOptions options;
   options.request = o.request;
   options.monte_carlo = o.monte_carlo;
@@ -40,7 +42,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o, std::ostream& out, std
   std::ostringstream text;
   if (o.format == "json") text << ToleranceReportJsonText(report) << "\n";
   else PrintToleranceReport(report, text);
-  if (!WriteReport(o.output, {o.file}, text.str(), "tolerance", out, err)) return 1;
+  if (!CommitReport(&file, text.str(), "tolerance", err)) return 1;
   if (!report.ok) err << "mechkin tolerance: " << o.file << ": " << report.message << "\n";
   return report.ok ? 0 : 1;
 }

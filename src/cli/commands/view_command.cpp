@@ -3,6 +3,7 @@
 #include "analysis/run_request.hpp"
 #include "cli/commands/load_for_command.hpp"
 #include "cli/commands/request_options.hpp"
+#include "io/output_file.hpp"
 #include "io/viewer.hpp"
 
 namespace mechkin {
@@ -53,6 +54,14 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
     err << "mechkin view: " << why << "\n";
     return 2;
   }
+  // The destinations first: refused (the input, one path twice, unwritable) before the run.
+  const std::string page = o.output.empty() ? DefaultPage(o.file) : o.output;
+  OutputFile page_file, gltf_file;
+  if (!DistinctOutputs({page, o.gltf}, {"-o", "--gltf"}, &why) || !page_file.Open(page, {o.file}, &why, nullptr, "the page") ||
+      (!o.gltf.empty() && !gltf_file.Open(o.gltf, {o.file}, &why, nullptr, "the glTF scene"))) {
+    err << "mechkin view: " << why << "\n";
+    return 1;
+  }
   const Motion motion = RunMotion(model, request);
   if (!motion.complete) err << "mechkin view: " << o.file << ": " << motion.stop.message << "\n";
   if (motion.rows() == 0) return 1;  // nothing to show
@@ -63,14 +72,13 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
     err << "mechkin view: " << why << "\n";
     return 2;
   }
-  const std::string page = o.output.empty() ? DefaultPage(o.file) : o.output;
-  if (!WriteViewerHtml(model, motion, scene, page, &why)) {
+  if (!WriteViewerHtml(model, motion, scene, &page_file, &why)) {
     err << "mechkin view: " << why << "\n";
     return 1;
   }
   out << "page written to " << page << (motion.complete ? "" : " (partial motion: the stop is marked)") << "\n";
   if (!o.gltf.empty()) {
-    if (!WriteGltf(model, motion, o.gltf, &why)) {
+    if (!WriteGltf(model, motion, o.gltf, &gltf_file, &why)) {
       err << "mechkin view: " << why << "\n";
       return 1;
     }
