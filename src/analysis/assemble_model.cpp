@@ -247,8 +247,13 @@ bool AssembleModel(Model* model, Diagnostic* error) {
   const ConstraintSystem sys(*model, true);
   SystemState s(sys);
   s.SetDesignPose(*model);
-  for (size_t d = 0; d < model->drivers.size(); ++d)
-    s.driver_values[d] = Jet::Constant(DesignDriverValue(*model, model->drivers[d]));
+  // A driver of a joint on markers is held at 0 (its markers coincide): its value is
+  // measured from there, so the assembled pose does not depend on the sketch.
+  for (size_t d = 0; d < model->drivers.size(); ++d) {
+    const Driver& driver = model->drivers[d];
+    const bool on_markers = driver.joint >= 0 && model->joints[driver.joint].on_markers;
+    s.driver_values[d] = Jet::Constant(on_markers ? 0.0 : DesignDriverValue(*model, driver));
+  }
   AimRotationDrivers(sys, &s);
   AssemblyRecord& rec = *model->assembly;
   std::vector<double> miss = JointMisses(sys, s);

@@ -70,8 +70,13 @@ void AddGeometry(const Model& m, CheckReport* r) {
       for (size_t k = i + 1; k < pts.size() && k < 8; ++k) {
         g.lengths.push_back({pts[i].joint, pts[k].joint, (pts[i].point - pts[k].point).norm() * len});
         if (pts[i].has_axis && pts[k].has_axis) {
-          const double c = std::clamp(pts[i].axis.dot(pts[k].axis), -1.0, 1.0);
-          g.angles.push_back({pts[i].joint, pts[k].joint, std::acos(c) * ang});
+          // acos as always; below 1e-6 rad atan2(|a×b|, a·b), since acos turns the
+          // round-off of an assembled pose (1e-16 in a·b) into 1e-8 rad
+          const Vec3& a = pts[i].axis;
+          const Vec3& b = pts[k].axis;
+          double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+          if (angle < 1e-6) angle = std::atan2(a.cross(b).norm(), a.dot(b));
+          g.angles.push_back({pts[i].joint, pts[k].joint, angle * ang});
         }
       }
     r->geometry.push_back(std::move(g));

@@ -25,12 +25,15 @@ const MarkerSpec* FindMarker(const Context& ctx, BodyIndex b, const std::optiona
   return nullptr;
 }
 
+bool MovedFromSketch(const Context& ctx, BodyIndex b);
+
 // A body point of the file (a marker's) in global design coordinates: exact for
-// ground and for a body drawn unrotated at a written position (the sum of the texts).
+// ground and for a body drawn unrotated at a written position the assembly kept
+// (the sum of the texts).
 Json GlobalPoint(const Context& ctx, BodyIndex b, const MarkerSpec& m, const Vec3& local_si) {
   if (b == kGround) return VectorJson(*m.point);
   const BodySpec* body = ctx.Body(b);
-  if (body && body->position && LiteralIdentity(body->orientation)) {
+  if (body && body->position && LiteralIdentity(body->orientation) && !MovedFromSketch(ctx, b)) {
     Json out = Json::array();
     for (int k = 0; k < 3; ++k) out.push_back(Sum(body->position->c[k], m.point->c[k], ctx.scale));
     return out;
@@ -45,7 +48,10 @@ Json GlobalPoint(const Context& ctx, BodyIndex b, const MarkerSpec& m, const Vec
 // A marker's axis (default: its body's z) in global axes.
 Json GlobalAxis(const Context& ctx, BodyIndex b, const MarkerSpec& m, const Vec3& local_h) {
   const BodySpec* body = b == kGround ? nullptr : ctx.Body(b);
-  if (b == kGround || (body && LiteralIdentity(body->orientation)))
+  // the body's file orientation holds unless the assembly placed or moved it
+  const bool placed = ctx.model.assembly && b < static_cast<int>(ctx.model.assembly->sketched.size()) &&
+                      (!ctx.model.assembly->sketched[b] || MovedFromSketch(ctx, b));
+  if (b == kGround || (body && LiteralIdentity(body->orientation) && !placed))
     return m.axis ? VectorJson(*m.axis) : Json::array({0, 0, 1});
   if (UsesParameters(m.axis) || (body && UsesParameters(body->orientation)))
     ctx.Note(m.pointer + "/axis", "written in global axes at the current parameter values (body '" +
@@ -73,6 +79,19 @@ bool NamedByJointOutput(const Context& ctx, const std::string& joint) {
   });
 }
 
+// A joint whose coordinate something reads: a driver on it or a joint output.
+// (Branch hints are rewritten to the design-pose zero instead: RebaseHints.)
+bool CoordinateObserved(const Context& ctx, const std::string& joint) {
+  const bool driven = std::any_of(ctx.spec.drivers.begin(), ctx.spec.drivers.end(),
+                                  [&](const DriverSpec& d) { return d.joint && *d.joint == joint; });
+  return driven || NamedByJointOutput(ctx, joint);
+}
+
+// The revolute coordinate at the design pose (rad): marker 2's x from marker 1's about the axis.
+double DesignAngle(const JointFrame& g1, const JointFrame& g2) {
+  return std::atan2(g1.f.cross(g2.f).dot(g1.h), g1.f.dot(g2.f));
+}
+
 // Why the global form cannot say this marker joint (empty: it can). The global
 // form fixes one frame in both bodies where they are drawn, so the markers must
 // coincide at the design pose; a joint output of a universal, planar or spherical
@@ -87,7 +106,7 @@ std::string Mismatch(const Context& ctx, const Joint& jm) {
            (g1.h - g2.h).norm() > tol)
     why << "its markers' axes are " << Degrees(g1.h, g2.h) << " deg apart at the design pose";
   else if (jm.type != JointType::Distance && jm.type != JointType::Spherical && jm.type != JointType::Universal &&
-           (g1.f - g2.f).norm() > tol)
+           (g1.f - g2.f).norm() > tol && CoordinateObserved(ctx, jm.name))
     why << "its markers are turned " << Degrees(g1.f, g2.f)
         << " deg about the axis at the design pose (its coordinate is not 0 there)";
   if (!why.str().empty() || !NamedByJointOutput(ctx, jm.name)) return why.str();
@@ -174,17 +193,30 @@ void ConvertOutputs(const Context& ctx, Json* doc) {
   }
 }
 
-// A body the assembly placed (no "position" in the file) gets its design pose written.
+// Whether the assembly moved body b from the pose the file gives it (its sketch).
+bool MovedFromSketch(const Context& ctx, BodyIndex b) {
+  const AssemblyRecord* rec = ctx.model.assembly ? &*ctx.model.assembly : nullptr;
+  if (!rec || b >= static_cast<int>(rec->sketched.size()) || !rec->sketched[b]) return false;
+  const Body& body = ctx.model.bodies[b];
+  return (body.position - rec->guess_position[b]).norm() > 1e-12 * ctx.model.characteristic_length ||
+         std::min((body.euler - rec->guess_euler[b]).norm(), (body.euler + rec->guess_euler[b]).norm()) > 1e-12;
+}
+
+// A body the assembly placed (no "position" in the file, or a sketch it moved) gets
+// its assembled design pose written: the global joints are where the bodies are.
 void WritePlacedPoses(const Context& ctx, Json* doc) {
   Json& bodies = (*doc)["bodies"];
   for (size_t k = 0; k < bodies.size(); ++k) {
     Json& b = bodies[k];
-    if (!b.is_object() || b.contains("position")) continue;
+    if (!b.is_object()) continue;
     const auto it = ctx.body_index.find(b.value("name", ""));
     if (it == ctx.body_index.end() || it->second == kGround) continue;
+    const bool moved = MovedFromSketch(ctx, it->second);
+    if (b.contains("position") && !moved) continue;
     const Body& body = ctx.model.bodies[it->second];
     Json placed = Json::object();
     for (const auto& item : b.items()) {
+      if (moved && (item.key() == "position" || item.key() == "orientation")) continue;
       placed[item.key()] = item.value();
       if (item.key() == "name") placed["position"] = NumberVector(body.position / ctx.unit, ctx.scale);
     }
@@ -195,6 +227,47 @@ void WritePlacedPoses(const Context& ctx, Json* doc) {
     ctx.Note("/bodies/" + std::to_string(k), "the assembled design pose is written at the current parameter values");
     b = std::move(placed);
   }
+}
+
+// A hint on a marker joint turned at the design pose is measured from the markers'
+// coincidence; the global form measures it from the design pose: subtract.
+void RebaseHints(const Context& ctx, Json* doc) {
+  if (!doc->contains("analysis") || !(*doc)["analysis"].contains("branch")) return;
+  Json& branch = (*doc)["analysis"]["branch"];
+  if (!branch.contains("joints") || !branch["joints"].is_object()) return;
+  for (auto& item : branch["joints"].items()) {
+    const auto it = ctx.joint_index.find(item.key());
+    if (it == ctx.joint_index.end() || !item.value().is_number()) continue;
+    const Joint& jm = ctx.model.joints[it->second];
+    if (!jm.on_markers || jm.type != JointType::Revolute) continue;
+    const double zero = DesignAngle(GlobalFrame(ctx, jm.body1, jm.frame1), GlobalFrame(ctx, jm.body2, jm.frame2));
+    if (std::abs(zero) < 1e-12) continue;
+    item.value() = Number(item.value().get<double>() - zero / ctx.model.units.angle_to_si, 1);
+  }
+}
+
+// Global design points of a body the assembly moved from its sketch name another
+// point of it in the global form (they were taken at the sketch): refuse, naming one.
+bool RefuseMovedGlobalPoints(const Context& ctx, std::string* error) {
+  auto moved = [&](const std::optional<std::string>& name) {
+    const auto it = name ? ctx.body_index.find(*name) : ctx.body_index.end();
+    return it != ctx.body_index.end() && it->second != kGround && MovedFromSketch(ctx, it->second);
+  };
+  std::string where, body;
+  for (const OutputSpec& o : ctx.spec.outputs)
+    if (where.empty() && o.body && !o.marker && (o.point || o.point1) && moved(o.body)) where = o.pointer, body = *o.body;
+  for (const LoadSpec& l : ctx.spec.loads)
+    if (where.empty() && ((l.point && moved(l.body)) || (l.point1 && moved(l.body1)) || (l.point2 && moved(l.body2))))
+      where = l.pointer, body = l.body ? *l.body : l.body1 ? *l.body1 : "";
+  for (const DriverSpec& d : ctx.spec.drivers)
+    if (where.empty() && ((d.point1 && moved(d.body1)) || (d.point2 && moved(d.body2)))) where = d.pointer, body = "";
+  for (const BodySpec& b : ctx.spec.bodies)
+    if (where.empty() && b.inertia && b.inertia->center && moved(b.name)) where = b.pointer + "/inertia", body = *b.name;
+  if (where.empty()) return true;
+  *error = where + ": a global design point on " + (body.empty() ? std::string("a body") : "body '" + body + "'") +
+           ", which the assembly moved from its sketch: the global form would read it at the assembled pose, "
+           "another point of the body (give the point as a marker, or draw the body where it assembles)";
+  return false;
 }
 
 void DropMarkers(Json* doc) {
@@ -208,8 +281,10 @@ void DropMarkers(Json* doc) {
 }  // namespace
 
 bool ToGlobal(const Context& ctx, Json* doc, std::string* error) {
+  if (!RefuseMovedGlobalPoints(ctx, error)) return false;
   if (!ConvertJoints(ctx, doc, error)) return false;
   if (doc->contains("outputs")) ConvertOutputs(ctx, doc);
+  RebaseHints(ctx, doc);
   WritePlacedPoses(ctx, doc);
   DropMarkers(doc);
   return true;

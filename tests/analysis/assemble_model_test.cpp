@@ -372,11 +372,11 @@ TEST(AssembleModel, MarkerChainOfThousandsOfBodiesAssembles) {
 namespace mechkin {
 namespace {
 
-// tests/data/four-bar-by-lengths.json (the bundled planar four-bar by its link
+// mechanisms/four-bar-by-lengths.json (the bundled planar four-bar by its link
 // lengths and a rocker hint): it assembles onto the bundled file's pose — the
 // rocker's pin at the global form's joint C.
 TEST(AssembleModel, FourBarByLengthsFileLandsOnTheBundledPose) {
-  const Model by_lengths = testing_files::FromJson(testing_files::ReadTestData("four-bar-by-lengths.json"));
+  const Model by_lengths = testing_files::FromJson(testing_files::ReadJson("four-bar-by-lengths.json"));
   const nlohmann::json global = testing_files::ReadJson("planar-four-bar.json");
   const Body& rocker = by_lengths.bodies[2];
   const Vec3 pin = rocker.position + CalcA(rocker.euler) * Vec3(0.080, 0, 0);  // the rocker's "pin" marker (80 mm)
@@ -393,7 +393,7 @@ namespace {
 // gives a newly closed pose whose crank pin lies at the new length and whose rocker
 // pin satisfies Freudenstein for that length (the open branch, hint kept).
 TEST(AssembleModel, WithParametersAssemblesEachVariant) {
-  const Model base = testing_files::FromJson(testing_files::ReadTestData("four-bar-by-lengths.json"));
+  const Model base = testing_files::FromJson(testing_files::ReadJson("four-bar-by-lengths.json"));
   for (double crank : {30.0, 45.0, 50.0}) {
     const LoadResult r = WithParameters(base, {{"crank", crank}});
     ASSERT_TRUE(r.ok()) << (r.errors.empty() ? "" : r.errors[0].ToString());

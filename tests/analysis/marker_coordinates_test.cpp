@@ -97,7 +97,8 @@ TEST(MarkerCoordinates, GlobalJointsStillMeasureFromTheDesignPose) {
 // form, row by row; the crank's pin marker lies on the frame line at t = 0.
 TEST(MarkerCoordinates, AVariantsMotionMatchesTheClosedFormFromTheMarkersZero) {
   const Model m = MarkerFourBar({{"crank", 50}});
-  EXPECT_NEAR(DesignDriverValue(m, m.drivers[0]), 60 * kDeg, 1e-12);  // the pose drawn
+  // drawn at 60°, assembled with the driver at 0: the design pose has the markers together
+  EXPECT_NEAR(DesignDriverValue(m, m.drivers[0]), 0, 1e-12);
   TableOptions table;
   table.order = 1;
   const Motion motion = RunMotion(m, AnalysisOptions{}, table);
@@ -116,22 +117,22 @@ TEST(MarkerCoordinates, AVariantsMotionMatchesTheClosedFormFromTheMarkersZero) {
   EXPECT_NEAR(motion.at(0, e3), 0, 1e-12);  // the crank along ground's x: its markers' x axes coincide
 }
 
-// `range` starts from the design value, the coordinate in the pose drawn (60°), and the
-// crank turns fully either way.
-TEST(MarkerCoordinates, RangeStartsFromTheDrawnCoordinate) {
+// `range` starts from the design value — the assembly held the driver at its markers'
+// coincidence, 0, although the file draws the crank at 60° — and the crank turns fully.
+TEST(MarkerCoordinates, RangeStartsFromTheMarkersCoincidence) {
   const Model m = MarkerFourBar({});
   RangeOptions options;
   options.steps = 72;
   const RangeReport r = CalcRange(m, options);
   ASSERT_TRUE(r.ok) << r.message;
   ASSERT_EQ(r.drivers.size(), 1u);
-  EXPECT_NEAR(r.drivers[0].design_value, 60, 1e-9);
+  EXPECT_NEAR(r.drivers[0].design_value, 0, 1e-9);
   EXPECT_EQ(r.drivers[0].upper.kind, "full turn");
 }
 
 // A prismatic joint on markers: its slide is marker2's origin along marker1's axis
-// from marker1's origin, so a slider drawn 30 mm along the guide has design value 30
-// and the translation driver's 0 puts the markers together.
+// from marker1's origin; a slider drawn 30 mm along the guide is assembled with the
+// driver at 0, its markers together, and slides 5 mm from there.
 TEST(MarkerCoordinates, APrismaticOnMarkersSlidesFromTheirCoincidence) {
   const nlohmann::json doc = {
       {"mechkin", 1},
@@ -146,7 +147,7 @@ TEST(MarkerCoordinates, APrismaticOnMarkersSlidesFromTheirCoincidence) {
       {"outputs", {{{"name", "slide"}, {"type", "joint"}, {"joint", "guide"}}}}};
   const Model m = testing_files::FromJson(doc);
   ASSERT_EQ(m.drivers.size(), 1u);
-  EXPECT_NEAR(DesignDriverValue(m, m.drivers[0]), 0.030, 1e-15);
+  EXPECT_NEAR(DesignDriverValue(m, m.drivers[0]), 0, 1e-15);
   TableOptions table;
   table.order = 0;
   const Motion motion = RunMotion(m, AnalysisOptions{}, table);

@@ -102,12 +102,33 @@ def check_json(exe, path):
     return report
 
 
+def roundtrip_markers_original(exe, original, f, tmp):
+    """A bundled file written on markers (positions placed by the assembly): to the
+    global form and back to markers, each running to the original's table."""
+    back = os.path.join(tmp, f[:-5] + ".global.json")
+    again = os.path.join(tmp, f[:-5] + ".markers2.json")
+    convert(exe, original, back, "--to", "global")
+    doc = json.load(open(back))
+    if any("marker1" in j for j in doc["joints"]) or any("markers" in b for b in doc["bodies"]):
+        failures.append("%s: the global form kept markers" % f)
+    same_table(exe, original, back, f + " -> global")
+    convert(exe, back, again, "--to", "markers")
+    same_table(exe, original, again, f + " -> global -> markers")
+    a, g = check_json(exe, original), check_json(exe, back)
+    for key in ("mobility", "redundant", "driven"):
+        if a["mobility"].get(key) != g["mobility"].get(key):
+            failures.append("%s: check's %r differs in the global form" % (f, key))
+
+
 def roundtrip_bundled(src, exe, tmp):
     mech = os.path.join(src, "mechanisms")
     for f in sorted(os.listdir(mech)):
         if not f.endswith(".json"):
             continue
         original = os.path.join(mech, f)
+        if any("marker1" in j for j in json.load(open(original))["joints"]):
+            roundtrip_markers_original(exe, original, f, tmp)
+            continue
         markers = os.path.join(tmp, f[:-5] + ".markers.json")
         back = os.path.join(tmp, f[:-5] + ".global.json")
         convert(exe, original, markers, "--to", "markers")
@@ -202,11 +223,23 @@ def notes_and_refusals(exe, tmp):
     bad = json.load(open(os.path.join(tmp, "rotated.markers.json")))
     bad["bodies"][1]["markers"]["elbow"]["point"] = [5, -10, 0]
     json.dump(bad, open(os.path.join(tmp, "apart.json"), "w"))
+    # Markers 5 mm apart in the drawing: the assembly closes them (positions are only
+    # a sketch) and moves the arm, whose output is a global design point: convert
+    # refuses, naming it, and writes nothing; on a marker, the file converts.
     out = run(exe, "convert", os.path.join(tmp, "apart.json"), "-o", os.path.join(tmp, "apart.global.json"))
-    if out.returncode != 1 or "/joints/1" not in out.stderr or "5 mm apart" not in out.stderr:
+    if out.returncode != 1 or "/outputs/0" not in out.stderr or "body 'arm'" not in out.stderr:
         failures.append("markers apart: exit %d, %r" % (out.returncode, out.stderr))
     if os.path.exists(os.path.join(tmp, "apart.global.json")):
         failures.append("markers apart: a file was written")
+    bad["bodies"][1]["markers"]["tip"] = {"point": [5, 20, 0]}
+    bad["outputs"][0] = {"name": "tip", "type": "point", "body": "arm", "marker": "tip"}
+    json.dump(bad, open(os.path.join(tmp, "apart_marker.json"), "w"))
+    out = run(exe, "convert", os.path.join(tmp, "apart_marker.json"), "-o", os.path.join(tmp, "apart.global.json"))
+    if out.returncode != 0:
+        failures.append("markers apart, output on a marker: exit %d, %r" % (out.returncode, out.stderr))
+    else:
+        same_table(exe, os.path.join(tmp, "apart_marker.json"), os.path.join(tmp, "apart.global.json"),
+                   "markers apart in the sketch -> global")
     out = run(exe, "convert", path, "-o", path)
     if out.returncode != 1 or json.load(open(path)) != ROTATED:
         failures.append("convert -o INPUT: exit %d, or the input changed" % out.returncode)

@@ -40,7 +40,9 @@ TEST(Mobility, KnownMechanisms) {
     EXPECT_EQ(static_cast<int>(r.idle.size()), e.idle) << e.file;
     EXPECT_EQ(r.mobility, CalcGrublerCount(m) + r.redundant) << e.file;  // M = M_G + r (§6)
     // The margin separates the kept from the discarded singular values by far.
-    if (r.redundant > 0) EXPECT_LT(r.sigma_max_dropped, 1e-10 * r.sigma_min_kept) << e.file;
+    if (r.redundant > 0) {
+      EXPECT_LT(r.sigma_max_dropped, 1e-10 * r.sigma_min_kept) << e.file;
+    }
   }
 }
 
