@@ -225,7 +225,7 @@ bool MergeSweepFiles(const std::vector<std::string>& files, SweepResult* merged,
       *error = "'" + files[f] + "': " + e.what() + ": the shard file is damaged; write it again with sweep --shard";
       return false;
     }
-    if (f == 0) *merged = SweepResult{part.parameters, part.columns, part.total, 1, 1, {}}, merged->shards = part.shards;
+    if (f == 0) *merged = SweepResult{part.parameters, part.columns, part.total, 1, 1, {}, {}}, merged->shards = part.shards;
     if (part.parameters != merged->parameters || part.columns != merged->columns || part.total != merged->total ||
         part.shards != merged->shards) {
       *error = "'" + files[f] + "' is a shard of another sweep (parameters, columns or variant count differ)";

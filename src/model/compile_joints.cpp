@@ -37,8 +37,9 @@ void Compiler::CompileJoint(const JointSpec& j) {
     ok = false;
   }
   if (!type) return;
-  if (j.marker1 || j.marker2) return CompileMarkerJoint(j, *type, ok ? &*name : nullptr, b1, b2);
-  CompileJointGeometry(j, *type, ok ? &*name : nullptr, b1 ? *b1 : kGround, b2 ? *b2 : kGround);
+  const JointType known = type.value();
+  if (j.marker1 || j.marker2) return CompileMarkerJoint(j, known, ok ? &*name : nullptr, b1, b2);
+  CompileJointGeometry(j, known, ok ? &*name : nullptr, b1 ? *b1 : kGround, b2 ? *b2 : kGround);
 }
 
 // The geometry of a joint of known type, validated; adds the joint when `name`

@@ -146,8 +146,9 @@ TEST_P(LockedWattII, IsLockedByTheJointsNamingTheTurnedOne) {
   EXPECT_TRUE(r.locked);
   EXPECT_EQ(r.locking_joints, c.locking) << r.verdict;
   EXPECT_EQ(r.verdict.rfind("locked by the joints", 0), 0u) << r.verdict;
-  if (c.locking.size() > 1)
+  if (c.locking.size() > 1) {
     EXPECT_NE(r.verdict.find("the axis of `" + turned + "` is 90° off"), std::string::npos) << r.verdict;
+  }
   const AnalysisReport run = RunQuietly(m);
   EXPECT_EQ(run.stop, StopKind::Refused);
   EXPECT_NE(run.message.find("locked by the joints"), std::string::npos) << run.message;

@@ -44,7 +44,7 @@ MechanismSpec CrankSpec() {
   s.version = Scalar::Of(1);
   s.name = "crank";
   s.source = "built in C++";
-  s.units = UnitsSpec{std::string("mm"), std::string("deg"), std::nullopt};
+  s.units = UnitsSpec{std::string("mm"), std::string("deg"), std::nullopt, std::nullopt, std::nullopt};
   s.parameters.push_back({"half", Scalar::Expr("L/2", "/parameters/half"), std::nullopt, std::nullopt, std::nullopt});
   s.parameters.push_back({"L", Scalar::Of(40, "/parameters/L"), 0.1, std::nullopt, std::nullopt});
   BodySpec b;

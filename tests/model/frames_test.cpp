@@ -32,8 +32,9 @@ TEST(JointFrames, OrthonormalAndRecoverGlobalGeometry) {
         ++side;
       }
       EXPECT_LT((origin[0] - origin[1]).norm(), 1e-12 * m.characteristic_length) << file << " " << j.name;
-      if (j.type != JointType::Universal && j.type != JointType::Spherical)
+      if (j.type != JointType::Universal && j.type != JointType::Spherical) {
         EXPECT_LT((h[0] - h[1]).norm(), 1e-12) << file << " " << j.name;
+      }
     }
   }
 }
