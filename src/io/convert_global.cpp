@@ -49,7 +49,8 @@ Json GlobalPoint(const Context& ctx, BodyIndex b, const MarkerSpec& m, const Vec
 Json GlobalAxis(const Context& ctx, BodyIndex b, const MarkerSpec& m, const Vec3& local_h) {
   const BodySpec* body = b == kGround ? nullptr : ctx.Body(b);
   // the body's file orientation holds unless the assembly placed or moved it
-  const bool placed = ctx.model.assembly && b < static_cast<int>(ctx.model.assembly->sketched.size()) &&
+  const bool placed = b != kGround && ctx.model.assembly &&
+                      b < static_cast<int>(ctx.model.assembly->sketched.size()) &&
                       (!ctx.model.assembly->sketched[b] || MovedFromSketch(ctx, b));
   if (b == kGround || (body && LiteralIdentity(body->orientation) && !placed))
     return m.axis ? VectorJson(*m.axis) : Json::array({0, 0, 1});
@@ -196,7 +197,7 @@ void ConvertOutputs(const Context& ctx, Json* doc) {
 // Whether the assembly moved body b from the pose the file gives it (its sketch).
 bool MovedFromSketch(const Context& ctx, BodyIndex b) {
   const AssemblyRecord* rec = ctx.model.assembly ? &*ctx.model.assembly : nullptr;
-  if (!rec || b >= static_cast<int>(rec->sketched.size()) || !rec->sketched[b]) return false;
+  if (!rec || b < 0 || b >= static_cast<int>(rec->sketched.size()) || !rec->sketched[b]) return false;
   const Body& body = ctx.model.bodies[b];
   return (body.position - rec->guess_position[b]).norm() > 1e-12 * ctx.model.characteristic_length ||
          std::min((body.euler - rec->guess_euler[b]).norm(), (body.euler + rec->guess_euler[b]).norm()) > 1e-12;
