@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/motion.hpp"
+#include "../bennett.hpp"
 #include "../test_files.hpp"
 
 namespace mechkin {
@@ -16,43 +17,8 @@ using nlohmann::json;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-// Bennett linkage with link lengths a (twist alpha) and b = a sin(beta)/sin(alpha)
-// (twist beta), built by walking the loop in Denavit–Hartenberg steps from the
-// input angle theta1 at the design pose; θ2 from the closure
-//   tan(θ1/2)·tan(θ2/2) = sin((β+α)/2) / sin((β−α)/2),   θ3 = 2π − θ1, θ4 = 2π − θ2.
-double BennettTheta2(double theta1, double alpha, double beta) {
-  const double k = std::sin((beta + alpha) / 2) / std::sin((beta - alpha) / 2);
-  return 2 * std::atan2(k * std::cos(theta1 / 2), std::sin(theta1 / 2));
-}
-
-json Bennett(double alpha, double beta, double theta1, int steps) {
-  const double a = 100, b = a * std::sin(beta) / std::sin(alpha), theta2 = BennettTheta2(theta1, alpha, beta);
-  const double th[4] = {theta1, theta2, 2 * M_PI - theta1, 2 * M_PI - theta2}, len[4] = {a, b, a, b},
-               tw[4] = {alpha, beta, alpha, beta};
-  Matrix3d R = Matrix3d::Identity();
-  Vector3d p = Vector3d::Zero();
-  std::vector<Vector3d> origin, axis;
-  for (int k = 0; k < 4; ++k) {
-    origin.push_back(p);
-    axis.push_back(R.col(2));
-    R = R * Eigen::AngleAxisd(th[k], Vector3d::UnitZ()).toRotationMatrix();
-    p += R * Vector3d(len[k], 0, 0);
-    R = R * Eigen::AngleAxisd(tw[k], Vector3d::UnitX()).toRotationMatrix();
-  }
-  EXPECT_LT(p.norm(), 1e-9);  // the loop closes
-  auto arr = [](const Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); };
-  const char* names[3] = {"link1", "link2", "link3"};
-  const char* pair[4][2] = {{"ground", "link1"}, {"link1", "link2"}, {"link2", "link3"}, {"link3", "ground"}};
-  json bodies = json::array(), joints = json::array();
-  for (int k = 0; k < 3; ++k) bodies.push_back({{"name", names[k]}, {"position", arr((origin[k] + origin[k + 1]) / 2)}});
-  for (int k = 0; k < 4; ++k)
-    joints.push_back({{"name", "J" + std::to_string(k + 1)}, {"type", "revolute"}, {"body1", pair[k][0]},
-                      {"body2", pair[k][1]}, {"origin", arr(origin[k])}, {"axis", arr(axis[k])}});
-  return {{"mechkin", 1}, {"units", {{"length", "mm"}, {"angle", "deg"}}}, {"bodies", bodies}, {"joints", joints},
-          {"drivers", {{{"name", "motor"}, {"type", "rotation"}, {"joint", "J1"}, {"function", "360*t"}}}},
-          {"outputs", {{{"name", "theta1"}, {"type", "joint"}, {"joint", "J1"}}, {{"name", "theta2"}, {"type", "joint"}, {"joint", "J2"}}}},
-          {"analysis", {{"start", 0}, {"end", 1}, {"steps", steps}}}};
-}
+using testing_files::Bennett;
+using testing_files::BennettTheta2;
 
 Motion RunBennett(const json& doc, double tol, AnalysisReport* report) {
   TableOptions table;

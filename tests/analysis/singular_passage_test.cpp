@@ -1,10 +1,5 @@
 // Singular positions whatever the parity of det Φ_q (issue 23, items 1 and 9;
-// docs/singularities.md). The IFToMM A02 N-four-bar: a crank and N rockers of length
-// 1 on ground pivots 1 apart along x, couplers of length 1 joining consecutive tips —
-// N parallelogram windows, each sharing its left rocker with the window before (the
-// crank is the first one). With θ the crank angle from +y, every window's factor of
-// det Φ_q is −cos θ: at θ = −90° (the crank points at the next pivot) the driven motion
-// passes uniquely, at +90° the parallelogram branch crosses N folded ones.
+// docs/singularities.md), on the IFToMM A02 N-four-bar (tests/n_four_bar.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,40 +8,13 @@
 #include <vector>
 
 #include "analysis/kinematic_analysis.hpp"
+#include "../n_four_bar.hpp"
 #include "../test_files.hpp"
 
 namespace mechkin {
 namespace {
 
-nlohmann::json Point(double x, double y) { return nlohmann::json::array({x, y, 0.0}); }
-
-// Drawn on the parallelogram branch at crank angle theta0 (deg, from +y), driven by
-// rate·t deg over [0, 1] s in `steps` rows.
-nlohmann::json NFourBar(int n, double theta0_deg, double rate_deg, int steps) {
-  const double th = theta0_deg * M_PI / 180, ex = -std::sin(th), ey = std::cos(th);
-  nlohmann::json j = {{"mechkin", 1}, {"name", "N-four-bar"}, {"units", {{"length", "m"}, {"angle", "deg"}}}};
-  auto rocker = [](int i) { return i == 0 ? std::string("crank") : "rocker" + std::to_string(i); };
-  j["bodies"] = nlohmann::json::array();
-  j["joints"] = nlohmann::json::array();
-  for (int i = 0; i <= n; ++i) {
-    j["bodies"].push_back({{"name", rocker(i)}, {"position", Point(i, 0)}});
-    j["joints"].push_back({{"name", "pivot" + std::to_string(i)}, {"type", "revolute"}, {"body1", "ground"},
-                           {"body2", rocker(i)}, {"origin", Point(i, 0)}, {"axis", {0, 0, 1}}});
-  }
-  for (int i = 1; i <= n; ++i) {
-    const std::string c = "coupler" + std::to_string(i);
-    j["bodies"].push_back({{"name", c}, {"position", Point(i - 1 + ex, ey)}});
-    j["joints"].push_back({{"name", "left" + std::to_string(i)}, {"type", "revolute"}, {"body1", rocker(i - 1)},
-                           {"body2", c}, {"origin", Point(i - 1 + ex, ey)}, {"axis", {0, 0, 1}}});
-    j["joints"].push_back({{"name", "right" + std::to_string(i)}, {"type", "revolute"}, {"body1", c},
-                           {"body2", rocker(i)}, {"origin", Point(i + ex, ey)}, {"axis", {0, 0, 1}}});
-  }
-  char fn[64];
-  std::snprintf(fn, sizeof fn, "%.17g*t", rate_deg);
-  j["drivers"] = {{{"name", "crank"}, {"type", "rotation"}, {"joint", "pivot0"}, {"function", fn}}};
-  j["analysis"] = {{"start", 0}, {"end", 1}, {"steps", steps}};
-  return j;
-}
+using testing_files::NFourBar;
 
 struct Row {
   double t;

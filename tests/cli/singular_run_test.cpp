@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli/commands/run_command.hpp"
+#include "../n_four_bar.hpp"
 
 namespace mechkin {
 namespace {
@@ -37,25 +38,7 @@ TEST(SingularRun, CrankEqualsRodStopsAtTheChangePointAtEveryOrder) {
 // −97°/s through the singular position at −90° (a unique passage, t = 50/97 s,
 // between rows): the run completes and says so on stderr.
 TEST(SingularRun, UniquePassageIsNotedOnStderr) {
-  nlohmann::json j = {{"mechkin", 1}, {"name", "N-four-bar"}, {"units", {{"length", "m"}, {"angle", "deg"}}}};
-  const double th = -40 * M_PI / 180, ex = -std::sin(th), ey = std::cos(th);
-  auto point = [](double x, double y) { return nlohmann::json::array({x, y, 0.0}); };
-  auto rocker = [](int i) { return i == 0 ? std::string("crank") : "rocker" + std::to_string(i); };
-  for (int i = 0; i <= 2; ++i) {
-    j["bodies"].push_back({{"name", rocker(i)}, {"position", point(i, 0)}});
-    j["joints"].push_back({{"name", "pivot" + std::to_string(i)}, {"type", "revolute"}, {"body1", "ground"},
-                           {"body2", rocker(i)}, {"origin", point(i, 0)}, {"axis", {0, 0, 1}}});
-  }
-  for (int i = 1; i <= 2; ++i) {
-    const std::string c = "coupler" + std::to_string(i);
-    j["bodies"].push_back({{"name", c}, {"position", point(i - 1 + ex, ey)}});
-    j["joints"].push_back({{"name", "left" + std::to_string(i)}, {"type", "revolute"}, {"body1", rocker(i - 1)},
-                           {"body2", c}, {"origin", point(i - 1 + ex, ey)}, {"axis", {0, 0, 1}}});
-    j["joints"].push_back({{"name", "right" + std::to_string(i)}, {"type", "revolute"}, {"body1", c},
-                           {"body2", rocker(i)}, {"origin", point(i + ex, ey)}, {"axis", {0, 0, 1}}});
-  }
-  j["drivers"] = {{{"name", "crank"}, {"type", "rotation"}, {"joint", "pivot0"}, {"function", "-97*t"}}};
-  j["analysis"] = {{"start", 0}, {"end", 1}, {"steps", 100}};
+  const nlohmann::json j = testing_files::NFourBar(2, -40, -97, 100);
   const std::string path = ::testing::TempDir() + "/n-four-bar-2.json";
   std::ofstream(path) << j.dump();
   RunOptions o;
