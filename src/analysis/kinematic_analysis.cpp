@@ -109,6 +109,9 @@ constexpr int kMaxReselectColumns = 1200;  // 200 bodies: the dense QR of the se
 // Rows whose condition estimate reaches this, with 1/κ heading for zero, have the
 // step before them examined for a singular position (bundled mechanisms stay below 40).
 constexpr double kExamineCondition = 50;
+// A pose whose set-aside (redundant) equations miss by more than this many position
+// tolerances is off the mechanism (Stepper::SetAsideCloses).
+constexpr double kSetAsideFactor = 10;
 
 // Condition number (1-norm estimate) of the scaled Jacobian's rows `rows`: compares
 // two independent sets of the same mechanism.
@@ -139,6 +142,7 @@ class Stepper {
   enum class Outcome { Ok, Failed, Suspect };
   Outcome Attempt(double t, double dt, bool reuse, bool polish = true);
   Outcome Refine(double t, StepDiagnostics* diag, double* bad_t);
+  bool SetAsideCloses();
   void FinishDiagnostics(StepDiagnostics* diag);
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
   bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
@@ -198,7 +202,7 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
   solve_.extended_precision =
       accuracy_phase && NeedsExtendedResidual(options_.tolerance, last_condition_, regular_condition_, options_.order);
   last_ = SolvePosition(*ws_, solve_, &s_, reuse && options_.modified_newton);
-  if (!last_.success) return Outcome::Failed;
+  if (!last_.success || !SetAsideCloses()) return Outcome::Failed;
   const double sign = ws_->factorization().Sign();
   if (options_.branch_guard) {
     if (have_sign_ && sign != prev_sign_ && !CrossesPassage(t, dt)) return Outcome::Suspect;
@@ -208,6 +212,19 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
   prev_sign_ = sign;
   have_sign_ = true;
   return Outcome::Ok;
+}
+
+// The equations set aside as redundant close at s_ too. Past the fold of a redundant
+// mechanism (Bricard's linkage) the solved rows alone still close, on a curve of their
+// own that crosses the mechanism's at the fold and misses the set-aside equations in
+// proportion to the overshoot: such a pose is not the mechanism's (no assembly exists
+// there), so the step fails and the fold is located. Along a motion they close to
+// about the solved residual (bundled: ≤ 3e-12 at tolerance 1e-10).
+bool Stepper::SetAsideCloses() {
+  if (selection_.set_aside.empty()) return true;
+  CalcPhi(ws_->system(), s_, &phi_);
+  return ScaledResidual(phi_, selection_.set_aside, selection_.set_aside_scales) <=
+         kSetAsideFactor * options_.tolerance;
 }
 
 // Adaptive sub-stepping between two table rows: halve until every sub-step is

@@ -69,6 +69,22 @@ double CubicRoot(const double g[4]) {
 
 }  // namespace
 
+bool IsFold(const ConstraintSystem& sys, const std::vector<int>& rows, const SystemState& s) {
+  if (6 * sys.num_bodies() > kDenseColumns || rows.empty()) return false;
+  const Eigen::MatrixXd J = ActiveScaledJacobian(sys, s, rows);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullU);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  const int n = static_cast<int>(sv.size());
+  int small = 0;
+  while (small < n && sv[n - 1 - small] < 1e-4 * sv[0]) ++small;
+  if (small == 0) return false;
+  // The left null space: the small singular values' vectors and, with more rows than
+  // columns, the columns of U beyond the singular values (exact zeros).
+  const Eigen::MatrixXd U0 = svd.matrixU().rightCols(J.rows() - n + small);
+  const Eigen::VectorXd nu = ScaledRhs(sys, s, rows, RowScales(sys, rows), nullptr);
+  return nu.norm() > 0 && (U0.transpose() * nu).norm() > 1e-2 * nu.norm();
+}
+
 SingularityClassifier::SingularityClassifier(const ConstraintSystem& sys, const std::vector<int>& active)
     : ws_(sys, active, WorkspaceOptions{}), pose_(sys) {}
 

@@ -31,6 +31,17 @@ struct SingularClassification {
   std::vector<double> driver_values;  // SI, at t
 };
 
+/// At a pose where the position solve stops going on (the last one solvable, within
+/// the bisection's resolution of the end): true when the scaled Φ_q of `rows` has
+/// singular values below 1e-4 of the largest and ν = −Φ_t (scaled) has a part above
+/// 1e-2 ‖ν‖ on their left singular vectors — ν leaves the range, the drivers cannot go
+/// on: a fold (docs/singularities.md §3). Rank-revealing, so `rows` may be every
+/// equation of a redundant mechanism: its redundancy is a left null vector that ν never
+/// leaves (the equations agree along the motion), the fold one more that it does. (The
+/// solved rows alone do not tell: at the fold of Bricard's linkage they have a curve of
+/// their own crossing the mechanism's, and ν stays in their range.) Dense, ≤ 200 bodies.
+bool IsFold(const ConstraintSystem& sys, const std::vector<int>& rows, const SystemState& s);
+
 /// Owns a workspace of its own so that the run's factorization and state are left
 /// untouched (a classification never changes the table). Dense: for models up to
 /// 200 bodies; larger ones get Undetermined.

@@ -11,6 +11,8 @@ namespace mechkin {
 namespace {
 
 constexpr int kDenseLimit = 1200;  // columns above which the dense SVDs are skipped
+// A probe farther than this from the pose it continues (|Δr| / L or rad) left the branch.
+constexpr double kBranchJump = 0.1;
 
 Eigen::MatrixXd SelectRowsOf(const Eigen::MatrixXd& J, const std::vector<int>& rows) {
   Eigen::MatrixXd out(rows.size(), J.cols());
@@ -69,8 +71,11 @@ SingularPosition LocateSingularity(KinematicsWorkspace& ws, const SystemState& b
     PredictPose(mid - base.t, predictor_order, &probe);
     EvalDriverFunctions(sys.model(), mid, &probe);
     AimRotationDrivers(sys, &probe);
-    newton.Solve(tight, &probe);
-    if (newton.Factorize(probe) && newton.JacobianSign() == sign_lo) {
+    // A probe that does not close, or closes on another branch (far from the pose it
+    // continues), is no pose of the run's branch: it counts as past the position.
+    const bool on_branch = newton.Solve(tight, &probe).success &&
+                           PoseDistance(base, probe, sys.model().characteristic_length) <= kBranchJump;
+    if (on_branch && newton.Factorize(probe) && newton.JacobianSign() == sign_lo) {
       t_lo = mid;
       s_lo = probe;
     } else {
@@ -90,6 +95,14 @@ SingularPosition LocateSingularity(KinematicsWorkspace& ws, const SystemState& b
 
 namespace {
 
+// Every equation, the set-aside ones included, closes at s to `tolerance` (scaled).
+bool ClosesAllRows(const ConstraintSystem& sys, const SystemState& s, double tolerance) {
+  Eigen::VectorXd phi;
+  CalcPhi(sys, s, &phi);
+  const std::vector<int> all = AllRows(sys);
+  return ScaledResidual(phi, all, RowScales(sys, all)) <= tolerance;
+}
+
 // A tight solve from the Taylor prediction off `base` at time t (the run's branch).
 bool ProbeFrom(KinematicsWorkspace& ws, const SystemState& base, double t, int predictor_order, SystemState* probe) {
   const ConstraintSystem& sys = ws.system();
@@ -100,7 +113,16 @@ bool ProbeFrom(KinematicsWorkspace& ws, const SystemState& base, double t, int p
   PredictPose(t - base.t, predictor_order, probe);
   EvalDriverFunctions(sys.model(), t, probe);
   AimRotationDrivers(sys, probe);
-  return ws.newton().Solve(tight, probe).success;
+  // A solve that lands far from the branch (near a fold the Taylor prediction
+  // overshoots, and Newton may close on another assembly: an axis of a cylindrical
+  // joint turned over) is no pose of the run's branch at t.
+  if (!ws.newton().Solve(tight, probe).success ||
+      PoseDistance(base, *probe, sys.model().characteristic_length) > kBranchJump)
+    return false;
+  // The equations set aside as redundant must close too: past the fold of a redundant
+  // mechanism (Bricard's) the solved rows alone still close, on a curve that crosses
+  // the mechanism's there and misses the set-aside ones in proportion to the overshoot.
+  return ClosesAllRows(sys, *probe, 100 * tight.tolerance);
 }
 
 // The pose as one vector (r and p of every body) for the fold fit.
@@ -149,6 +171,10 @@ LimitOfMotion LocateLimit(KinematicsWorkspace& ws, const SystemState& base, doub
       lim.fold = true;
     }
   }
+  // No fit where the samples coincide (the base itself on the fold: a limit on a
+  // table row): the end is then a fold when the solved rows say so there, and the
+  // bisection already placed it to `resolution`.
+  if (!lim.fold && IsFold(ws.system(), AllRows(ws.system()), s_lo)) lim.fold = true;
   EvalDriverFunctions(ws.system().model(), lim.t, &s_lo);
   for (const Jet& j : s_lo.driver_values) lim.driver_values.push_back(j.c[0]);
   return lim;

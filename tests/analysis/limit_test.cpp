@@ -56,5 +56,32 @@ TEST(LimitOfMotion, NonGrashofInputReachesItsLimit) {
   EXPECT_FALSE(rep.singular.has_value());
 }
 
+// A spatial RCCC (tests/data/rccc-input-limit-90.json): revolute input on ground about
+// z, cylinders crank–coupler, coupler–follower, follower–ground; twists 90°, 45°, 45°,
+// 45° between consecutive axes. The axes' directions form a spherical four-bar: the arc
+// d24 from the crank's cylinder axis z2 = (cos θ, sin θ, 0) to the ground's z4 =
+// (1, 0, 1)/√2 has cos d24 = cos θ/√2, and coupler and follower reach at most 45° + 45°,
+// so θ ≤ 90° exactly; the offsets were drawn from the stretched pose (θ = 90°), so the
+// slides stay finite up to it (there z2, z3, z4 are coplanar and the cylinders may also
+// slide together: Φ_q loses rank 2, one of them the fold). Issue 23 item 4: before,
+// "singular position" 0.0018° past 90° (probes that had left the branch counted).
+TEST(LimitOfMotion, SpatialRcccInputStopsAt90Degrees) {
+  for (const char* function : {"360*t", "97*t"}) {  // 90° on a row (t = 0.25), and off rows
+    nlohmann::json j = testing_files::ReadTestData("rccc-input-limit-90.json");
+    j["drivers"][0]["function"] = function;
+    j["analysis"] = {{"start", 0}, {"end", function[0] == '3' ? 0.5 : 1.0}, {"steps", 100}};
+    const AnalysisReport rep = RunKinematicAnalysis(testing_files::FromJson(j), AnalysisOptions{},
+                                                    [](const SystemState&, const StepDiagnostics&) { return true; });
+    ASSERT_FALSE(rep.complete) << function;
+    ASSERT_TRUE(rep.limit.has_value()) << function << ": " << rep.message;
+    EXPECT_FALSE(rep.singular.has_value()) << function;
+    EXPECT_TRUE(rep.limit->fold) << function;
+    EXPECT_NEAR(rep.limit->driver_values[0], M_PI / 2, 1e-9) << function;
+    EXPECT_EQ(rep.message.rfind("limit of motion at t = ", 0), 0u) << rep.message;
+    EXPECT_NE(rep.message.find("driver `motor` = 90 deg"), std::string::npos) << rep.message;
+    EXPECT_NE(rep.message.find("the branch folds there"), std::string::npos) << rep.message;
+  }
+}
+
 }  // namespace
 }  // namespace mechkin

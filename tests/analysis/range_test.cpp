@@ -47,6 +47,28 @@ TEST(Range, PistonDrivenSliderFindsBothDeadCentres) {
   EXPECT_NEAR(r.drivers[0].upper.value, 70 - x0, 1e-9 * 40);
 }
 
+// Bricard's trihedral linkage (IFToMM A04, mechanisms/bricard-mechanism.json): five
+// unit rods on the skew hexagon of a unit cube, one redundant equation. Its joint
+// angles obey (1 + sin φ)(1 + sin β) = 1 (φ the driven R1, β = −R2), so φ ranges over
+// sin φ ≥ −1/2: the folds φ = −π/6 and 7π/6, where β = π/2 is a double root. Whatever
+// the steps — folds on a row (360, 3600, 36, 12 per turn), off them (37, 1000) — both
+// ends are located to 1e-9 rad and read `limit` (issue 23 item 3: before, `failed` on a
+// row, and an end past 7π/6 where the solved rows close but the set-aside one does not).
+TEST(Range, BricardFoldsAreLimitsAtEveryStepCount) {
+  const Model m = testing_files::FromJson(testing_files::ReadJson("bricard-mechanism.json"));
+  for (int steps : {360, 3600, 36, 37, 1000, 12}) {
+    RangeOptions o;
+    o.steps = steps;
+    const RangeReport r = CalcRange(m, o);
+    ASSERT_TRUE(r.ok) << r.message;
+    const DriverRange& d = r.drivers.at(0);
+    EXPECT_EQ(d.lower.kind, "limit") << steps << " steps: " << d.lower.message;
+    EXPECT_EQ(d.upper.kind, "limit") << steps << " steps: " << d.upper.message;
+    EXPECT_NEAR(d.lower.value * M_PI / 180, -M_PI / 6, 1e-9) << steps << " steps";
+    EXPECT_NEAR(d.upper.value * M_PI / 180, 7 * M_PI / 6, 1e-9) << steps << " steps";
+  }
+}
+
 TEST(Range, UnknownDriverIsNamed) {
   const Model m = testing_files::FromJson(testing_files::PlanarFourBar(40, 120, 80, 100, 60, 10));
   RangeOptions o;
