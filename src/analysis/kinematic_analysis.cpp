@@ -143,6 +143,7 @@ class Stepper {
   Outcome Attempt(double t, double dt, bool reuse, bool polish = true);
   Outcome Refine(double t, StepDiagnostics* diag, double* bad_t);
   bool SetAsideCloses();
+  double UpdateSetAsideResidual();
   void FinishDiagnostics(StepDiagnostics* diag);
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
   bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
@@ -165,6 +166,7 @@ class Stepper {
   SolveSummary last_;
   double prev_sign_ = 0;
   double last_condition_ = 1;  // the previous row's condition estimate
+  double set_aside_residual_ = 0;  // at s_, by UpdateSetAsideResidual
   double regular_condition_ = std::numeric_limits<double>::infinity();  // the smallest along the run
   double reselect_above_ = kReselectCondition;  // condition that triggers the next search
   bool have_sign_ = false;
@@ -221,10 +223,17 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
 // there), so the step fails and the fold is located. Along a motion they close to
 // about the solved residual (bundled: ≤ 3e-12 at tolerance 1e-10).
 bool Stepper::SetAsideCloses() {
-  if (selection_.set_aside.empty()) return true;
+  return UpdateSetAsideResidual() <= kSetAsideFactor * options_.tolerance;
+}
+
+// The scaled residual of the set-aside equations at s_, kept for the row's
+// diagnostics: every accepted pose passed Attempt, which computed it there.
+double Stepper::UpdateSetAsideResidual() {
+  set_aside_residual_ = 0;
+  if (selection_.set_aside.empty()) return 0;
   CalcPhi(ws_->system(), s_, &phi_);
-  return ScaledResidual(phi_, selection_.set_aside, selection_.set_aside_scales) <=
-         kSetAsideFactor * options_.tolerance;
+  set_aside_residual_ = ScaledResidual(phi_, selection_.set_aside, selection_.set_aside_scales);
+  return set_aside_residual_;
 }
 
 // Adaptive sub-stepping between two table rows: halve until every sub-step is
@@ -255,10 +264,7 @@ Stepper::Outcome Stepper::Refine(double t, StepDiagnostics* diag, double* bad_t)
 
 void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   diag->residual = last_.residual;
-  if (!selection_.set_aside.empty()) {
-    CalcPhi(ws_->system(), s_, &phi_);
-    diag->set_aside_residual = ScaledResidual(phi_, selection_.set_aside, selection_.set_aside_scales);
-  }
+  diag->set_aside_residual = set_aside_residual_;
   diag->condition = ws_->factorization().ConditionEstimate();
   last_condition_ = diag->condition;
   regular_condition_ = std::min(regular_condition_, diag->condition);
@@ -307,6 +313,7 @@ bool Stepper::ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep) {
   SolveDerivatives(*ws_, options_.order, &s_);
   prev_sign_ = ws_->factorization().Sign();
   have_sign_ = true;
+  UpdateSetAsideResidual();  // other rows are set aside now
   FinishDiagnostics(diag);
   return true;
 }

@@ -55,26 +55,35 @@ std::vector<std::string> InvolvedEquations(const ConstraintSystem& sys, const Sy
   return names;
 }
 
+// A solve from the Taylor prediction off `base` at time t to `tolerance`. A probe
+// that does not close, or lands far from the branch (near a fold the prediction
+// overshoots and Newton may close on another assembly: an axis of a cylindrical joint
+// turned over), is no pose of the run's branch at t.
+bool SolveOnBranch(KinematicsWorkspace& ws, const SystemState& base, double t, int predictor_order,
+                   double tolerance, SystemState* probe) {
+  const ConstraintSystem& sys = ws.system();
+  SolveOptions tight;
+  tight.tolerance = tolerance;
+  tight.max_iterations = 100;
+  *probe = base;
+  PredictPose(t - base.t, predictor_order, probe);
+  EvalDriverFunctions(sys.model(), t, probe);
+  AimRotationDrivers(sys, probe);
+  return ws.newton().Solve(tight, probe).success &&
+         PoseDistance(base, *probe, sys.model().characteristic_length) <= kBranchJump;
+}
+
 }  // namespace
 
 SingularPosition LocateSingularity(KinematicsWorkspace& ws, const SystemState& base, double t_lo, double t_hi,
                                    double sign_lo, double resolution, int predictor_order) {
   const ConstraintSystem& sys = ws.system();
   NewtonSolver& newton = ws.newton();
-  SystemState s_lo = base;
-  SolveOptions tight;
-  tight.tolerance = 1e-14;
-  tight.max_iterations = 100;
+  SystemState s_lo = base, probe = base;
   while (t_hi - t_lo > resolution) {
     const double mid = 0.5 * (t_lo + t_hi);
-    SystemState probe = base;
-    PredictPose(mid - base.t, predictor_order, &probe);
-    EvalDriverFunctions(sys.model(), mid, &probe);
-    AimRotationDrivers(sys, &probe);
-    // A probe that does not close, or closes on another branch (far from the pose it
-    // continues), is no pose of the run's branch: it counts as past the position.
-    const bool on_branch = newton.Solve(tight, &probe).success &&
-                           PoseDistance(base, probe, sys.model().characteristic_length) <= kBranchJump;
+    // A probe off the run's branch counts as past the position.
+    const bool on_branch = SolveOnBranch(ws, base, mid, predictor_order, 1e-14, &probe);
     if (on_branch && newton.Factorize(probe) && newton.JacobianSign() == sign_lo) {
       t_lo = mid;
       s_lo = probe;
@@ -105,24 +114,12 @@ bool ClosesAllRows(const ConstraintSystem& sys, const SystemState& s, double tol
 
 // A tight solve from the Taylor prediction off `base` at time t (the run's branch).
 bool ProbeFrom(KinematicsWorkspace& ws, const SystemState& base, double t, int predictor_order, SystemState* probe) {
-  const ConstraintSystem& sys = ws.system();
-  SolveOptions tight;
-  tight.tolerance = 1e-13;
-  tight.max_iterations = 100;
-  *probe = base;
-  PredictPose(t - base.t, predictor_order, probe);
-  EvalDriverFunctions(sys.model(), t, probe);
-  AimRotationDrivers(sys, probe);
-  // A solve that lands far from the branch (near a fold the Taylor prediction
-  // overshoots, and Newton may close on another assembly: an axis of a cylindrical
-  // joint turned over) is no pose of the run's branch at t.
-  if (!ws.newton().Solve(tight, probe).success ||
-      PoseDistance(base, *probe, sys.model().characteristic_length) > kBranchJump)
-    return false;
+  constexpr double kTolerance = 1e-13;
+  if (!SolveOnBranch(ws, base, t, predictor_order, kTolerance, probe)) return false;
   // The equations set aside as redundant must close too: past the fold of a redundant
   // mechanism (Bricard's) the solved rows alone still close, on a curve that crosses
   // the mechanism's there and misses the set-aside ones in proportion to the overshoot.
-  return ClosesAllRows(sys, *probe, 100 * tight.tolerance);
+  return ClosesAllRows(ws.system(), *probe, 100 * kTolerance);
 }
 
 // The pose as one vector (r and p of every body) for the fold fit.
