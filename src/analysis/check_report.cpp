@@ -127,6 +127,8 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   }
   std::sort(r.joints.begin(), r.joints.end());  // the JSON object's key order
   r.grubler = CalcGrublerCount(m);
+  r.couplers = static_cast<int>(m.couplers.size());
+  for (const auto& j : m.joints) r.joint_equations += EquationsRemoved(j.type);
   r.dof_after_drivers_count = r.grubler - r.drivers;
   r.planar = FindPlanarStructure(m);
   r.mobility = CalcMobility(m);

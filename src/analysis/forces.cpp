@@ -132,9 +132,10 @@ void ForceSolver::Kappa(const SystemState& s) {
     const ConstraintEntry& en = sys_.entries()[e];
     KappaTerms k;
     en.constraint->CalcKappa(MakeInput(sys_, s, e), lambda_.data() + en.first_row, &k);
-    const BodyIndex bi = en.constraint->body_i(), bj = en.constraint->body_j();
-    if (bi != kGround) kappa_.segment<3>(6 * bi) += k.F_i, kappa_.segment<3>(6 * bi + 3) += k.T_i;
-    if (bj != kGround) kappa_.segment<3>(6 * bj) += k.F_j, kappa_.segment<3>(6 * bj + 3) += k.T_j;
+    for (int side = 0; side < en.constraint->num_sides(); ++side) {
+      const BodyIndex b = en.constraint->body(side);
+      if (b != kGround) kappa_.segment<3>(6 * b) += k.F(side), kappa_.segment<3>(6 * b + 3) += k.T(side);
+    }
   }
 }
 
@@ -228,7 +229,7 @@ void ForceSolver::Reactions(const SystemState& s, ForceResults* out) const {
     Vec3 F = Vec3::Zero(), T = Vec3::Zero(), F1 = Vec3::Zero(), T1 = Vec3::Zero();
     for (size_t e = 0; e < sys_.entries().size(); ++e) {
       const ConstraintEntry& en = sys_.entries()[e];
-      if (en.from_driver || en.source != static_cast<int>(j)) continue;
+      if (en.from_driver || en.from_coupler || en.source != static_cast<int>(j)) continue;
       const ConstraintInput in = MakeInput(sys_, s, e);
       JacobianBlocks blocks;
       en.constraint->CalcJacobian(in, &blocks);

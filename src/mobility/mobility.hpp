@@ -60,6 +60,9 @@ struct MobilityReport {
   int dof_after_drivers = 0;
   DrivingStatus driving_status = DrivingStatus::Full;
   std::vector<std::string> conflicting_drivers;
+  /// Couplers (§3.11) whose equation, with the joints', contradicts a conflicting
+  /// driver: the rows a conflicting driver's row is a combination of.
+  std::vector<std::string> conflicting_couplers;
   std::vector<std::string> remaining_freedoms;
   MobilityVerdict verdict_kind = MobilityVerdict::Regular;
   std::string verdict;  // the verdict in words (empty when regular)

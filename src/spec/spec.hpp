@@ -115,6 +115,19 @@ struct JointSpec {
   std::string pointer;
 };
 
+/// A coupler between joint coordinates ("couplers", docs/format.md): gear, belt,
+/// rack_pinion, screw_coupling (joint1, joint2 and ratio / pitch_radius / pitch) or
+/// coupling (joints, coefficients, constant, optional coordinates).
+struct CouplerSpec {
+  std::optional<std::string> name, type;
+  std::optional<std::string> joint1, joint2;
+  std::vector<std::string> joints, coordinates;  // coupling
+  std::vector<Scalar> coefficients;              // coupling
+  std::optional<Scalar> ratio, pitch_radius, pitch, constant;
+  std::string pointer;
+  bool ok = true;  // false: the reader reported a structural error
+};
+
 /// A function of time: an expression in t or a table of (t, value) rows.
 struct FunctionSpec {
   enum class Kind { Expression, Table, Invalid };
@@ -195,6 +208,7 @@ struct MechanismSpec {
   std::vector<MarkerSpec> ground_markers;  // "ground": {"markers": {...}}, global coordinates
   std::vector<BodySpec> bodies;
   std::vector<JointSpec> joints;
+  std::vector<CouplerSpec> couplers;
   std::vector<DriverSpec> drivers;
   std::optional<AnalysisSpec> analysis;
   std::vector<OutputSpec> outputs;
