@@ -95,6 +95,8 @@ struct EnumNames<Quantity> {
       {Quantity::JointMoment, "joint_moment"},
       {Quantity::JointForceLocal, "joint_force_local"},
       {Quantity::JointMomentLocal, "joint_moment_local"},
+      {Quantity::CouplerEffort, "coupler_effort"},
+      {Quantity::CouplerPower, "coupler_power"},
       {Quantity::KineticEnergy, "kinetic_energy"},
       {Quantity::PotentialEnergy, "potential_energy"},
       {Quantity::EnergyBalance, "energy_balance"},

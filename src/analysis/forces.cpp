@@ -4,6 +4,8 @@
 #include <Eigen/SVD>
 #include <map>
 
+#include "constraints/couplers.hpp"
+
 namespace mechkin {
 namespace {
 
@@ -188,6 +190,7 @@ void ForceSolver::Solve(KinematicsWorkspace& ws, const SystemState& s, ForceResu
   out->rates = rates;
   Efforts(s, out);
   Reactions(s, out);
+  CouplerEfforts(s, out);
   Energies(s, out);
 }
 
@@ -259,6 +262,30 @@ void ForceSolver::Reactions(const SystemState& s, ForceResults* out) const {
     out->moment_joint[j] = sign * (C.transpose() * TP);
     out->force_joint_rate[j] = sign * (C.transpose() * LocalRate(k, F, F1));
     out->moment_joint_rate[j] = sign * (C.transpose() * TP1);
+  }
+}
+
+// Q_k = −c_k λ on each coordinate of each coupler and the power −Q_1 q̇_1 (§3.11).
+void ForceSolver::CouplerEfforts(const SystemState& s, ForceResults* out) const {
+  const size_t nc = model_.couplers.size();
+  out->coupler_effort.assign(nc, {0, 0, 0});
+  out->coupler_effort_rate.assign(nc, {0, 0, 0});
+  out->coupler_power.assign(nc, 0);
+  out->coupler_power_rate.assign(nc, 0);
+  for (size_t e = 0; e < sys_.entries().size(); ++e) {
+    const ConstraintEntry& en = sys_.entries()[e];
+    if (!en.from_coupler) continue;
+    const auto& c = static_cast<const CouplerConstraint&>(*en.constraint);
+    const double lam = lambda_[en.first_row], lam1 = lambda_rate_[en.first_row];
+    for (int k = 0; k < c.num_terms(); ++k) {
+      out->coupler_effort[en.source][k] = -c.coefficient(k) * lam;
+      out->coupler_effort_rate[en.source][k] = -c.coefficient(k) * lam1;
+    }
+    const ConstraintInput in = MakeInput(sys_, s, e);
+    const double q1 = c.CoordinateDerivative(in, 0, 1), q2 = order_ >= 2 ? c.CoordinateDerivative(in, 0, 2) : 0;
+    const double Q = out->coupler_effort[en.source][0], Q1 = out->coupler_effort_rate[en.source][0];
+    out->coupler_power[en.source] = -Q * q1;
+    out->coupler_power_rate[en.source] = -(Q1 * q1 + Q * q2);
   }
 }
 

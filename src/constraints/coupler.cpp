@@ -85,6 +85,17 @@ void CouplerConstraint::CalcKappa(const ConstraintInput& in, const double* lambd
   }
 }
 
+double CouplerConstraint::CoordinateDerivative(const ConstraintInput& in, int k, int m) const {
+  const Term& t = terms_[k];
+  const ConstraintInput ti = TermInput(in, t);
+  JacobianBlocks tb;
+  TermFamily(t).CalcJacobian(ti, &tb);
+  double rhs = 0;
+  TermFamily(t).CalcRhs(ti, m, &rhs);
+  return tb.r_i.row(0).dot(ti.i.r[m]) + tb.pi_i.row(0).dot(ti.i.w[m - 1]) + tb.r_j.row(0).dot(ti.j.r[m]) +
+         tb.pi_j.row(0).dot(ti.j.w[m - 1]) - rhs;
+}
+
 void CouplerConstraint::CalcAngles(const ConstraintInput& in, double* angles) const {
   for (int n = 0; n < num_terms_; ++n) {
     const Term& t = terms_[n];

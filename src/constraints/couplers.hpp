@@ -43,6 +43,11 @@ class CouplerConstraint : public Constraint {
   /// Φ in metres when a slide takes part (§3.11: the compile step scales c_k so), else radians.
   int LengthPower() const override { return has_slide_ ? 1 : 0; }
   int num_terms() const { return num_terms_; }
+  /// c_k of coordinate k, whether it is a rotation, and its m-th time derivative
+  /// q_k^(m) = ∂q_k/∂q q^(m) − RHS_m(q_k) (m ≥ 1; the kinematics of orders ≤ m set).
+  double coefficient(int k) const { return terms_[k].c; }
+  bool is_rotation(int k) const { return static_cast<bool>(terms_[k].rotation); }
+  double CoordinateDerivative(const ConstraintInput& in, int k, int m) const;
 
   /// Φ = Σ c_k q_k − c_0 on either input type (double or extended precision).
   template <class Input, typename S>

@@ -17,7 +17,7 @@ using nlohmann::json;
 using testing_files::FromJson;
 using testing_files::ReadJson;
 
-Motion Run(const Model& m, int order, bool forces, double tol = 1e-10) {
+Motion RunTable(const Model& m, int order, bool forces, double tol = 1e-10) {
   TableOptions t;
   t.order = order;
   t.si = true;
@@ -47,7 +47,7 @@ double PlanetAt(double t, int k) { return -kZs / kZp * (SunAt(t, k) - CarrierAt(
 
 TEST(Couplers, PlanetaryCarrierFollowsWillisAtEveryOrder) {
   const Model m = FromJson(ReadJson("planetary-gear-train.json"));
-  const Motion run = Run(m, 4, false);
+  const Motion run = RunTable(m, 4, false);
   ASSERT_GT(run.rows(), 100);
   const auto t = Col(run, "t");
   double worst_carrier = 0, worst_planet = 0;
@@ -93,7 +93,7 @@ TEST(Couplers, PlanetaryTenThousandTurnsWithoutDrift) {
 // (virtual work: τ δθ + F ρ δθ = 0).
 TEST(Couplers, RackTravelIsPitchRadiusTimesSteeringAngle) {
   const Model m = FromJson(ReadJson("rack-and-pinion-steering.json"));
-  const Motion run = Run(m, 3, true);
+  const Motion run = RunTable(m, 3, true);
   const double rho = 0.008, F = 500;
   const auto t = Col(run, "t");
   double worst_travel = 0, worst_torque = 0, swing = 0;
@@ -112,12 +112,27 @@ TEST(Couplers, RackTravelIsPitchRadiusTimesSteeringAngle) {
   EXPECT_LT(worst_travel, 1e-12);
   EXPECT_LT(worst_torque, 1e-10);
   EXPECT_NEAR(swing, rho * M_PI / 2, 1e-9);  // the rack really travels ρ·90°
+  // The coupler's own outputs: the tooth force on the rack's coordinate (−F, holding
+  // the road force), the torque on the pinion's (F ρ), and the power it takes from
+  // the pinion, −F ρ θ̇, which the rack's coordinate receives.
+  const auto q1 = Col(run, "steering_gear.effort1"), q2 = Col(run, "steering_gear.effort2");
+  const auto power = Col(run, "steering_gear.power"), rate = Col(run, "steering_gear.power_t");
+  double worst_effort = 0, worst_power = 0, worst_rate = 0;
+  for (int r = 0; r < run.rows(); ++r) {
+    const double thd = M_PI / 2 * M_PI * std::cos(M_PI * t[r]), thdd = -M_PI / 2 * M_PI * M_PI * std::sin(M_PI * t[r]);
+    worst_effort = std::max({worst_effort, std::abs(q2[r] + F), std::abs(q1[r] - F * rho)});
+    worst_power = std::max(worst_power, std::abs(power[r] + F * rho * thd));
+    worst_rate = std::max(worst_rate, std::abs(rate[r] + F * rho * thdd));
+  }
+  EXPECT_LT(worst_effort, 1e-9);
+  EXPECT_LT(worst_power, 1e-9);
+  EXPECT_LT(worst_rate, 1e-8);
 }
 
 // θ_left + θ_right = 2 θ_case: the right axle against 2θ_case − θ_left at every order.
 TEST(Couplers, DifferentialRightAxleAgainstClosedForm) {
   const Model m = FromJson(ReadJson("open-differential.json"));
-  const Motion run = Run(m, 4, false);
+  const Motion run = RunTable(m, 4, false);
   const auto t = Col(run, "t");
   double worst = 0;
   for (int k = 0; k <= 4; ++k) {
@@ -153,7 +168,7 @@ TEST(Couplers, EffortThroughGearPairMatchesVirtualWork) {
   direct["bodies"].erase(0);
   direct["joints"].erase(0);
   direct["drivers"] = {{{"name", "crank_motor"}, {"type", "rotation"}, {"joint", "crank_bearing"}, {"function", "-0.25*1440*t"}}};
-  const Motion a = Run(FromJson(geared), 3, true), b = Run(FromJson(direct), 3, true);
+  const Motion a = RunTable(FromJson(geared), 3, true), b = RunTable(FromJson(direct), 3, true);
   ASSERT_EQ(a.rows(), b.rows());
   const auto tm = Col(a, "motor.effort"), tc = Col(b, "crank_motor.effort");
   const auto pm = Col(a, "motor.power"), pc = Col(b, "crank_motor.power");
@@ -185,7 +200,7 @@ TEST(Couplers, EnergyBalancesOnEveryCouplerExampleGivenInertia) {
       ++k;
     }
     const Model model = FromJson(j);
-    const Motion m = Run(model, 3, true, 1e-12);
+    const Motion m = RunTable(model, 3, true, 1e-12);
     double flow = 0, balance = 0;
     const auto t = Col(m, "t"), T = Col(m, "kinetic_energy"), V = Col(m, "potential_energy");
     for (int r = 0; r < m.rows(); ++r) {
