@@ -477,8 +477,9 @@ def rack_pinion_steering():
     # Pinion (pitch radius 8 mm) on the steering column turns about z; the rack slides
     # along x; tie rods (distance links) from the rack ends to steering arms on the two
     # knuckles, which turn about z on their kingpins.
-    rho, half, king_x, king_y = 8.0, 300.0, 420.0, -150.0
-    arm = [-90.0, 110.0]  # right steering arm from its kingpin (mirrored on the left)
+    # Tie rods along the rack (100 mm), steering arms (110 mm) across them: far from a toggle.
+    rho, half, king_x, king_y = 8.0, 300.0, 420.0, -100.0
+    arm = [-20.0, 108.0]  # right steering arm from its kingpin (mirrored on the left)
     bodies = [{"name": "column", "position": [0.0, 0.0, 0.0]}, {"name": "rack", "position": [0.0, rho, 0.0]}]
     joints = [revolute("column_bearing", "ground", "column", (0, 0, 0)),
               {"name": "rack_guide", "type": "prismatic", "body1": "ground", "body2": "rack",

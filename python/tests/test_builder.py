@@ -145,7 +145,9 @@ def test_builder_gear_pair_is_the_bundled_geared_crank_and_runs(root):
         m.add_output(o["name"], o["type"], joint=o["joint"])
     m.set_expect(**bundled["expect"])
     assert m.to_dict() == bundled
-    table = m.compile().run(order=1)
+    model = m.compile()
+    assert model.couplers == [{"name": "mesh", "type": "gear", "joints": ["motor_bearing", "crank_bearing"]}]
+    table = model.run(order=1)
     t = np.asarray(table["t"])
     crank = np.asarray(table["crank_angle"])
     assert np.max(np.abs(crank - (-0.25 * 1440 * t))) < 1e-9

@@ -63,7 +63,8 @@ struct EnumNames<StopKind> {
                                                 {StopKind::AssemblyFailed, "assembly_failed"},
                                                 {StopKind::SingularPosition, "singular_position"},
                                                 {StopKind::SolveFailed, "solve_failed"},
-                                                {StopKind::Interrupted, "interrupted"}};
+                                                {StopKind::Interrupted, "interrupted"},
+                                                {StopKind::JointLimit, "joint_limit"}};
 };
 // `check`'s driving status (the `expect` key "driven").
 template <>

@@ -100,6 +100,7 @@ class Compiler {
                 const std::optional<Vec3>& axis1, const std::optional<Vec3>& axis2,
                 const std::optional<Vec3>& normal, const std::optional<Vec3>& p1, const std::optional<Vec3>& p2,
                 Joint* joint);
+  void CompileJointLimits(const JointSpec& j);
   void CompileDriver(const DriverSpec& d);
   bool DriverOnBody(const DriverSpec& d, Driver* drv);
   bool DriverOnJoint(const DriverSpec& d, bool rotation, Driver* drv);

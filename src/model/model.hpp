@@ -82,6 +82,9 @@ struct Joint {
   // Defined on two markers: its frames are the markers' (not the design pose's), so
   // its coordinate is 0 where the markers coincide, whatever the pose drawn.
   bool on_markers = false;
+  // [lo, hi] (SI) of the angle (revolute, screw) or slide (prismatic, cylindrical),
+  // from the coordinate's zero; a run that reaches one stops there (analysis/joint_limits.hpp).
+  std::optional<std::pair<double, double>> limits;
 };
 
 enum class CouplerKind { Gear, Belt, RackPinion, ScrewCoupling, Coupling };

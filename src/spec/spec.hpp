@@ -111,6 +111,9 @@ struct JointSpec {
   std::optional<Vector3Spec> origin, axis, axis1, axis2, normal, point1, point2;
   std::optional<Scalar> pitch, length;
   std::optional<std::string> marker1, marker2;  // markers of body1 and body2 instead of global geometry
+  // "limits": [lo, hi] of a revolute or screw joint's angle, a prismatic or cylindrical
+  // joint's slide (file units, from the design pose or the markers' coincidence).
+  std::optional<std::array<Scalar, 2>> limits;
   bool geometry_complete = true;     // every required geometry key is present
   std::string pointer;
 };
