@@ -71,7 +71,7 @@ void PrintMobility(const MobilityReport& m, int drivers, std::ostream& out) {
   for (const auto& e : m.redundant_equations) {
     out << "    - " << e.description;
     if (!e.fixed_by.empty()) {
-      out << " is already fixed by joints ";
+      out << (e.couplers_in_fixed_by ? " is already fixed by joints and couplers " : " is already fixed by joints ");
       for (size_t k = 0; k < e.fixed_by.size(); ++k) out << (k ? ", " : "") << e.fixed_by[k];
     }
     out << "\n";

@@ -535,7 +535,10 @@ void NameRedundantEquationsSparse(const ConstraintSystem& joints, const SparseRo
       const double cmax = coef.cwiseAbs().maxCoeff();
       std::set<std::string> names;
       for (int k = 0; k < coef.size(); ++k)
-        if (cmax > 0 && std::abs(coef[k]) > 1e-6 * cmax) names.insert(joints.SourceName(k));
+        if (cmax > 0 && std::abs(coef[k]) > 1e-6 * cmax && joints.SourceName(k) != joints.SourceName(row)) {
+          names.insert(joints.SourceName(k));
+          eq.couplers_in_fixed_by |= joints.entries()[joints.Locate(k).first].from_coupler;
+        }
       names.erase(joints.SourceName(row));
       eq.fixed_by.assign(names.begin(), names.end());
     }

@@ -31,7 +31,8 @@ enum class MobilityVerdict { Regular, Overconstrained };
 struct RedundantEquation {
   int row;
   std::string description;          // "joint `J4` (revolute): rotation about its frame's f axis"
-  std::vector<std::string> fixed_by;  // joints whose equations already fix it
+  std::vector<std::string> fixed_by;  // joints (and couplers, §3.11) whose equations already fix it
+  bool couplers_in_fixed_by = false;
 };
 
 struct IdleFreedom {

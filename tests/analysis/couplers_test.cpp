@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "analysis/motion.hpp"
 #include "test_files.hpp"
@@ -59,6 +60,7 @@ TEST(Couplers, PlanetaryCarrierFollowsWillisAtEveryOrder) {
       worst_planet = std::max(worst_planet, std::abs(p[r] - PlanetAt(t[r], k)) / (1 + std::abs(PlanetAt(t[r], k))));
     }
   }
+  std::printf("[measured] Willis, orders 0-4: carrier %.2e, planet %.2e (relative)\n", worst_carrier, worst_planet);
   EXPECT_LT(worst_carrier, 1e-12);
   EXPECT_LT(worst_planet, 1e-12);
 }
@@ -82,6 +84,10 @@ TEST(Couplers, PlanetaryTenThousandTurnsWithoutDrift) {
   const int last = run.rows() - 1;
   const double t = run.at(last, run.layout().Find("t"));
   ASSERT_DOUBLE_EQ(t, 10000);
+  std::printf("[measured] after 1e4 turns: carrier %.2e rad, planet %.2e rad, planet3 %.2e rad\n",
+              std::abs(run.at(last, run.layout().Find("carrier_angle")) - CarrierAt(t, 0)),
+              std::abs(run.at(last, run.layout().Find("planet_spin")) - PlanetAt(t, 0)),
+              std::abs(run.at(last, run.layout().Find("planet3_spin")) - PlanetAt(t, 0)));
   EXPECT_NEAR(run.at(last, run.layout().Find("carrier_angle")), CarrierAt(t, 0), 1e-9);
   EXPECT_NEAR(run.at(last, run.layout().Find("planet_spin")), PlanetAt(t, 0), 1e-9);
   EXPECT_NEAR(run.at(last, run.layout().Find("planet3_spin")), PlanetAt(t, 0), 1e-9);
@@ -109,6 +115,8 @@ TEST(Couplers, RackTravelIsPitchRadiusTimesSteeringAngle) {
   }
   const auto tau = Col(run, "steering_wheel.effort");
   for (double v : tau) worst_torque = std::max(worst_torque, std::abs(v - (-F * rho)));
+  std::printf("[measured] rack travel - rho*theta (orders 0-3, relative) %.2e; wheel torque + F rho %.2e N m\n",
+              worst_travel, worst_torque);
   EXPECT_LT(worst_travel, 1e-12);
   EXPECT_LT(worst_torque, 1e-10);
   EXPECT_NEAR(swing, rho * M_PI / 2, 1e-9);  // the rack really travels ρ·90°
@@ -124,6 +132,8 @@ TEST(Couplers, RackTravelIsPitchRadiusTimesSteeringAngle) {
     worst_power = std::max(worst_power, std::abs(power[r] + F * rho * thd));
     worst_rate = std::max(worst_rate, std::abs(rate[r] + F * rho * thdd));
   }
+  std::printf("[measured] tooth force / pinion torque %.2e, power %.2e, power rate %.2e\n", worst_effort, worst_power,
+              worst_rate);
   EXPECT_LT(worst_effort, 1e-9);
   EXPECT_LT(worst_power, 1e-9);
   EXPECT_LT(worst_rate, 1e-8);
@@ -145,6 +155,7 @@ TEST(Couplers, DifferentialRightAxleAgainstClosedForm) {
       worst = std::max(worst, std::abs(right[r] - want) / (1 + std::abs(want)));
     }
   }
+  std::printf("[measured] differential right axle, orders 0-4: %.2e\n", worst);
   EXPECT_LT(worst, 1e-12);
 }
 
@@ -178,6 +189,8 @@ TEST(Couplers, EffortThroughGearPairMatchesVirtualWork) {
     worst = std::max(worst, std::abs(tm[r] - (-0.25) * tc[r]) / scale);
     worst_power = std::max(worst_power, std::abs(pm[r] - pc[r]) / (scale * 1440 * M_PI / 180));
   }
+  std::printf("[measured] geared vs direct crank: motor torque - r*crank torque %.2e (of %.3g N m), power %.2e\n",
+              worst, scale, worst_power);
   EXPECT_GT(scale, 1e-3);
   EXPECT_LT(worst, 1e-9);
   EXPECT_LT(worst_power, 1e-9);
@@ -210,6 +223,7 @@ TEST(Couplers, EnergyBalancesOnEveryCouplerExampleGivenInertia) {
       if (r > 0) flow = std::max({flow, std::abs((T[r] - T[r - 1]) / (t[r] - t[r - 1])), std::abs((V[r] - V[r - 1]) / (t[r] - t[r - 1]))});
       balance = std::max(balance, std::abs(m.at(r, m.layout().Find("energy_balance"))));
     }
+    std::printf("[measured] %s: energy balance %.2e of flow %.3g\n", file, balance / flow, flow);
     EXPECT_GT(flow, 0) << file;
     EXPECT_LE(balance, 1e-10 * flow) << file << " (largest energy flow " << flow << ")";
   }

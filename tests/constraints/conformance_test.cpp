@@ -10,6 +10,7 @@
 // rotation drivers and screws move on their joint's rotation manifold.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <random>
@@ -714,6 +715,8 @@ TEST(Conformance, CouplerBetweenJointCoordinates) {
   std::mt19937 g(20261202);
   Errors worst;
   for (int n = 0; n < kPoses; ++n) worst.Max(CheckCouplerCase(MakeCoupler(g, n)));
+  std::printf("[measured] couplers: phi %.1e ext %.1e jac %.1e jac_p %.1e rhs_w %.1e rhs_p %.1e kappa %.1e\n", worst.phi,
+              worst.phi_extended, worst.jac, worst.jac_p, worst.rhs_w, worst.rhs_p, worst.kappa);
   ExpectConforms(worst);
 }
 
