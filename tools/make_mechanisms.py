@@ -431,5 +431,133 @@ def bricard():
         "expect": {"grubler": 0, "mobility": 1, "redundant": 1, "idle": 0, "driven": "full"}})
 
 
+# ---- couplers between joint coordinates (issue 25) --------------------------------
+
+def revolute(name, b1, b2, origin, axis=(0, 0, 1)):
+    return {"name": name, "type": "revolute", "body1": b1, "body2": b2, "origin": list(origin), "axis": list(axis)}
+
+
+def planetary():
+    # Sun 24, planets 18, ring 60 teeth (z_r = z_s + 2 z_p), module 1 mm: the planets'
+    # centres on a 21 mm circle. Each mesh is written relative to the carrier, so the
+    # second and third planets' meshes repeat the Willis relation: 2 redundant couplers.
+    zs, zp, zr, a = 24, 18, 60, 21.0
+    bodies = [{"name": "sun", "position": [0.0, 0.0, 0.0]}, {"name": "ring", "position": [0.0, 0.0, 0.0]},
+              {"name": "carrier", "position": [0.0, 0.0, 0.0]}]
+    joints = [revolute("sun_bearing", "ground", "sun", (0, 0, 0)), revolute("ring_bearing", "ground", "ring", (0, 0, 0)),
+              revolute("carrier_bearing", "ground", "carrier", (0, 0, 0))]
+    couplers = []
+    for k in range(3):
+        phi = 2 * math.pi * k / 3
+        c = r([a * math.cos(phi), a * math.sin(phi), 0.0])
+        name = "planet%d" % (k + 1)
+        bodies.append({"name": name, "position": c})
+        joints.append(revolute(name + "_pin", "carrier", name, c))
+        couplers.append({"name": "sun_mesh%d" % (k + 1), "type": "coupling",
+                         "joints": [name + "_pin", "sun_bearing", "carrier_bearing"], "coefficients": [zp, zs, -zs]})
+        couplers.append({"name": "ring_mesh%d" % (k + 1), "type": "coupling",
+                         "joints": [name + "_pin", "ring_bearing", "carrier_bearing"], "coefficients": [zp, -zr, zr]})
+    write("planetary-gear-train", {
+        "mechkin": 1, "name": "planetary gear train",
+        "description": "Sun (24 teeth), three planets (18) on a carrier, ring (60). The sun turns 1 rev/s and the ring "
+                       "-0.25 rev/s; the carrier follows the Willis equation w_c = (z_s w_s + z_r w_r)/(z_s + z_r). "
+                       "Each mesh is a coupling relative to the carrier (z_p th_p + z_s th_s - z_s th_c = 0, "
+                       "z_p th_p - z_r th_r + z_r th_c = 0); the second and third planets repeat the relation.",
+        "units": {"length": "mm", "angle": "deg"},
+        "bodies": bodies, "joints": joints, "couplers": couplers,
+        "drivers": [{"name": "sun_motor", "type": "rotation", "joint": "sun_bearing", "function": "360*t"},
+                    {"name": "ring_motor", "type": "rotation", "joint": "ring_bearing", "function": "-90*t"}],
+        "analysis": {"start": 0, "end": 4, "steps": 200},
+        "outputs": [{"name": "carrier_angle", "type": "joint", "joint": "carrier_bearing"},
+                    {"name": "planet_spin", "type": "joint", "joint": "planet1_pin"}],
+        "expect": {"grubler": 0, "mobility": 2, "redundant": 2, "driven": "full"}})
+
+
+def rack_pinion_steering():
+    # Pinion (pitch radius 8 mm) on the steering column turns about z; the rack slides
+    # along x; tie rods (distance links) from the rack ends to steering arms on the two
+    # knuckles, which turn about z on their kingpins.
+    # Tie rods along the rack (100 mm), steering arms (110 mm) across them: far from a toggle.
+    rho, half, king_x, king_y = 8.0, 300.0, 420.0, -100.0
+    arm = [-20.0, 108.0]  # right steering arm from its kingpin (mirrored on the left)
+    bodies = [{"name": "column", "position": [0.0, 0.0, 0.0]}, {"name": "rack", "position": [0.0, rho, 0.0]}]
+    joints = [revolute("column_bearing", "ground", "column", (0, 0, 0)),
+              {"name": "rack_guide", "type": "prismatic", "body1": "ground", "body2": "rack",
+               "origin": [0.0, rho, 0.0], "axis": [1, 0, 0]}]
+    for side, sx in (("right", 1), ("left", -1)):
+        pivot = [sx * king_x, king_y, 0.0]
+        arm_end = [pivot[0] + sx * arm[0], pivot[1] + arm[1], 0.0]
+        bodies.append({"name": side + "_knuckle", "position": pivot})
+        joints.append(revolute(side + "_kingpin", "ground", side + "_knuckle", pivot))
+        joints.append({"name": side + "_tie_rod", "type": "distance", "body1": "rack", "body2": side + "_knuckle",
+                       "point1": [sx * half, rho, 0.0], "point2": arm_end})
+    write("rack-and-pinion-steering", {
+        "mechkin": 1, "name": "rack-and-pinion steering",
+        "description": "A steering column turns a pinion of pitch radius 8 mm on a rack (rack travel = 8 mm x steering "
+                       "angle in radians); tie rods from the rack ends turn the two knuckles on their kingpins. The "
+                       "wheel turns +-90 deg; the rack carries a 500 N road force, the column's torque is 500 N x 8 mm.",
+        "units": {"length": "mm", "angle": "deg", "mass": "kg", "force": "N"},
+        "bodies": bodies, "joints": joints,
+        "couplers": [{"name": "steering_gear", "type": "rack_pinion", "joint1": "column_bearing", "joint2": "rack_guide",
+                      "pitch_radius": rho}],
+        "drivers": [{"name": "steering_wheel", "type": "rotation", "joint": "column_bearing", "function": "90*sin(pi*t)"}],
+        "loads": [{"name": "road", "type": "force", "body": "rack", "point": [0.0, rho, 0.0], "components": [500, 0, 0]}],
+        "analysis": {"start": 0, "end": 2, "steps": 200},
+        "outputs": [{"name": "rack_travel", "type": "joint", "joint": "rack_guide"},
+                    {"name": "right_wheel", "type": "joint", "joint": "right_kingpin"},
+                    {"name": "left_wheel", "type": "joint", "joint": "left_kingpin"}],
+        "expect": {"grubler": 1, "mobility": 1, "redundant": 0, "driven": "full"}})
+
+
+def differential():
+    # Open differential: case (carrier) and the two axle shafts on one axis (x):
+    # theta_left + theta_right = 2 theta_case.
+    x = (1, 0, 0)
+    write("open-differential", {
+        "mechkin": 1, "name": "open differential",
+        "description": "The case turns 1 rev/s; the left axle is held 10 deg behind it and back (a corner); the right "
+                       "axle follows th_left + th_right = 2 th_case (a coupling of three joint coordinates).",
+        "units": {"length": "mm", "angle": "deg"},
+        "bodies": [{"name": "case", "position": [0.0, 0.0, 0.0]}, {"name": "left_axle", "position": [-100.0, 0.0, 0.0]},
+                   {"name": "right_axle", "position": [100.0, 0.0, 0.0]}],
+        "joints": [revolute("case_bearing", "ground", "case", (0, 0, 0), x),
+                   revolute("left_bearing", "ground", "left_axle", (-100, 0, 0), x),
+                   revolute("right_bearing", "ground", "right_axle", (100, 0, 0), x)],
+        "couplers": [{"name": "spider_gears", "type": "coupling", "joints": ["left_bearing", "right_bearing", "case_bearing"],
+                      "coefficients": [1, 1, -2]}],
+        "drivers": [{"name": "drive_shaft", "type": "rotation", "joint": "case_bearing", "function": "360*t"},
+                    {"name": "left_wheel", "type": "rotation", "joint": "left_bearing", "function": "360*t - 10*sin(pi*t)"}],
+        "analysis": {"start": 0, "end": 2, "steps": 100},
+        "outputs": [{"name": "right_angle", "type": "joint", "joint": "right_bearing"}],
+        "expect": {"grubler": 2, "mobility": 2, "redundant": 0, "driven": "full"}})
+
+
+def geared_crank():
+    # A motor pinion (16 teeth) drives the crank gear (64 teeth): theta_crank = -theta_motor/4;
+    # the crank (50 mm) and a 150 mm connecting rod (distance link) drive a slider on x.
+    a, b, th = 50.0, 150.0, math.radians(30)
+    B = [a * math.cos(th), a * math.sin(th), 0.0]
+    W = [B[0] + math.sqrt(b * b - B[1] * B[1]), 0.0, 0.0]
+    write("geared-slider-crank", {
+        "mechkin": 1, "name": "slider-crank driven through a gear pair",
+        "description": "A motor pinion (16 teeth) meshes with the crank gear (64 teeth), ratio -1/4; crank 50 mm, "
+                       "connecting rod 150 mm (a distance link), slider on the x axis. The motor turns 4 rev/s.",
+        "units": {"length": "mm", "angle": "deg"},
+        "bodies": [{"name": "motor", "position": [-80.0, 0.0, 0.0]}, {"name": "crank", "position": [0.0, 0.0, 0.0]},
+                   {"name": "slider", "position": r(W)}],
+        "joints": [revolute("motor_bearing", "ground", "motor", (-80, 0, 0)),
+                   revolute("crank_bearing", "ground", "crank", (0, 0, 0)),
+                   {"name": "rod", "type": "distance", "body1": "crank", "body2": "slider", "point1": r(B), "point2": r(W)},
+                   {"name": "guide", "type": "prismatic", "body1": "ground", "body2": "slider", "origin": r(W),
+                    "axis": [1, 0, 0]}],
+        "couplers": [{"name": "mesh", "type": "gear", "joint1": "motor_bearing", "joint2": "crank_bearing", "ratio": -0.25}],
+        "drivers": [{"name": "motor", "type": "rotation", "joint": "motor_bearing", "function": "1440*t"}],
+        "analysis": {"start": 0, "end": 1, "steps": 360},
+        "outputs": [{"name": "crank_angle", "type": "joint", "joint": "crank_bearing"},
+                    {"name": "stroke", "type": "joint", "joint": "guide"}],
+        "expect": {"grubler": 1, "mobility": 1, "redundant": 0, "driven": "full"}})
+
+
 if __name__ == "__main__":
     bricard()
+    planetary(); rack_pinion_steering(); differential(); geared_crank()

@@ -156,6 +156,8 @@ class Model:
     bodies = property(lambda self: list(self._info["bodies"]), doc="moving bodies' names, in file order")
     joints = property(lambda self: [dict(j) for j in self._info["joints"]],
                       doc="[{name, type, body1, body2}] in file order")
+    couplers = property(lambda self: [dict(c) for c in self._info["couplers"]],
+                        doc="[{name, type, joints}]: the couplers between joint coordinates (gears, racks, ...)")
     drivers = property(lambda self: list(self._info["drivers"]), doc="drivers' names")
     outputs = property(lambda self: list(self._info["outputs"]), doc="outputs' names")
     units = property(lambda self: dict(self._info["units"]), doc="{length, angle}: the file's units")
@@ -182,7 +184,7 @@ class Model:
 
     def range(self, driver=None, steps=360, span=None, tol=1e-10):
         """Range of motion of each driver (or of `driver`) from the design pose, like
-        `mechkin range`: each end located and labelled 'limit', 'branch point',
+        `mechkin range`: each end located and labelled 'limit', 'branch point', 'joint limit',
         'full turn', 'open' or 'failed'. span: search span of translations and
         distances in file units (default 4x the mechanism's size)."""
         data, text = self._core.range(driver or "", int(steps), 0.0 if span is None else float(span), float(tol))

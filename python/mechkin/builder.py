@@ -23,6 +23,7 @@ everything else is checked by compile(), which raises FormatError.
 """
 import copy as _copy
 
+_COUPLER_TYPES = ("gear", "belt", "rack_pinion", "screw_coupling", "coupling")
 _JOINT_TYPES = ("revolute", "prismatic", "screw", "cylindrical", "universal", "spherical", "planar", "distance")
 _GROUND = "ground"
 
@@ -43,7 +44,7 @@ class Mechanism:
     """A mechanism under construction, in the file's form (see the module doc).
 
     Methods add one element each and return its name: add_parameter, add_body,
-    add_marker, add_joint, add_driver, add_output, add_load; set_analysis,
+    add_marker, add_joint, add_coupler (add_gear), add_driver, add_output, add_load; set_analysis,
     set_expect, set_gravity, set_view. to_dict() gives the file as a dict,
     compile(**parameters) the mechkin.Model."""
 
@@ -54,9 +55,10 @@ class Mechanism:
         if units is not None:
             self._file["units"] = dict(units)
         self._bodies, self._joints, self._drivers, self._outputs, self._loads = [], [], [], [], []
+        self._couplers = []
         self._parameters, self._ground_markers = {}, {}
         self._body_index = {}
-        self._names = {"joint": set(), "driver": set(), "output": set(), "load": set()}
+        self._names = {"joint": set(), "driver": set(), "output": set(), "load": set(), "coupler": set()}
 
     # -- elements --------------------------------------------------------------
     def add_parameter(self, name, value, tolerance=None, min=None, max=None, description=None):
@@ -108,6 +110,24 @@ class Mechanism:
         self._joints.append(joint)
         return name
 
+    def add_coupler(self, name, type, **fields):
+        """A coupler between joint coordinates (docs/format.md, couplers): 'gear' or
+        'belt' (joint1=, joint2=, ratio=: θ₂ = ratio·θ₁), 'rack_pinion' (joint1= the
+        pinion, joint2= the rack, pitch_radius=), 'screw_coupling' (joint1=, joint2=,
+        pitch=) or 'coupling' (joints=[...], coefficients=[...], constant=, coordinates=)."""
+        if type not in _COUPLER_TYPES:
+            raise ValueError("unknown coupler type '%s'; one of %s" % (type, ", ".join(_COUPLER_TYPES)))
+        self._unique(name, self._names["coupler"], "coupler")
+        self._names["coupler"].add(name)
+        coupler = {"name": name, "type": type}
+        coupler.update(_drop_none(fields))
+        self._couplers.append(coupler)
+        return name
+
+    def add_gear(self, name, joint1, joint2, ratio):
+        """A gear pair: θ(joint2) = ratio · θ(joint1) (negative for an external mesh)."""
+        return self.add_coupler(name, "gear", joint1=joint1, joint2=joint2, ratio=ratio)
+
     def add_driver(self, name, type, function, **where):
         """A driver: type 'rotation'/'translation' of a joint (joint=), of a body
         (body=, axis=), a 'distance' between points, ...; function of t (text or table)."""
@@ -156,6 +176,8 @@ class Mechanism:
             out["ground"] = {"markers": self._ground_markers}
         out["bodies"] = self._bodies
         out["joints"] = self._joints
+        if self._couplers:
+            out["couplers"] = self._couplers
         if self._drivers:
             out["drivers"] = self._drivers
         for key in ("gravity", "analysis"):

@@ -347,6 +347,13 @@ py::dict ModelInfo(const LoadedModel& lm) {
   for (const auto& j : m.joints)
     joints.append(py::dict(py::arg("name") = j.name, py::arg("type") = JointTypeName(j.type),
                            py::arg("body1") = m.BodyName(j.body1), py::arg("body2") = m.BodyName(j.body2)));
+  py::list couplers;  // {name, type, joints}: the couplers between joint coordinates
+  for (const auto& c : m.couplers) {
+    py::list cj;
+    for (const auto& cc : c.coordinates) cj.append(m.joints[cc.joint].name);
+    couplers.append(py::dict(py::arg("name") = c.name, py::arg("type") = CouplerKindName(c.kind), py::arg("joints") = cj));
+  }
+  d["couplers"] = couplers;
   for (const auto& dr : m.drivers) drivers.append(dr.name);
   for (const auto& o : m.outputs) outputs.append(o.name);
   d["bodies"] = bodies;

@@ -66,7 +66,7 @@ std::vector<double> JointMisses(const ConstraintSystem& sys, const SystemState& 
   std::vector<double> miss(sys.model().joints.size(), 0.0);
   for (size_t k = 0; k < sys.entries().size(); ++k) {
     const ConstraintEntry& e = sys.entries()[k];
-    if (e.from_driver) continue;
+    if (e.from_driver || e.from_coupler) continue;
     const Constraint& c = *e.constraint;
     const double scale = c.LengthPower() == 0 ? L : 1.0;
     for (int r = 0; r < c.size(); ++r) {

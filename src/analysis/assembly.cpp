@@ -35,10 +35,26 @@ double DesignDriverValue(const Model& m, const Driver& d) {
       .dot(DesignPoint(m, d.body2, d.frame2.origin) - DesignPoint(m, d.body1, d.frame1.origin));
 }
 
+// A coupler's rotation on a joint that a rotation driver drives is aimed at the
+// driver's value too (its whole turns); its other rotations keep their references,
+// carried over whole turns from step to step (UpdateAngleReferences, §3.11).
+void AimCoupler(const ConstraintSystem& sys, const ConstraintEntry& en, size_t e, SystemState* s) {
+  const Model& m = sys.model();
+  int angle = 0;
+  for (const CouplerCoordinate& cc : m.couplers[en.source].coordinates) {
+    if (!cc.rotation) continue;
+    for (size_t d = 0; d < m.drivers.size(); ++d)
+      if (m.drivers[d].kind == DriverKind::JointRotation && m.drivers[d].joint == cc.joint)
+        s->angle_ref[angle == 0 ? e : en.extra_angle_slot + angle - 1] = s->driver_values[d].c[0];
+    ++angle;
+  }
+}
+
 void AimRotationDrivers(const ConstraintSystem& sys, SystemState* s) {
   for (size_t e = 0; e < sys.entries().size(); ++e) {
     const ConstraintEntry& en = sys.entries()[e];
     if (en.from_driver && en.constraint->HasAngle()) s->angle_ref[e] = s->driver_values[en.source].c[0];
+    if (en.from_coupler) AimCoupler(sys, en, e, s);
   }
 }
 

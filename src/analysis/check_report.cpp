@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "analysis/assemble_model.hpp"
+#include "analysis/joint_limits.hpp"
 #include "mobility/grubler.hpp"
 
 namespace mechkin {
@@ -108,6 +109,31 @@ void AddAssembly(const Model& m, CheckReport* r) {
 
 }  // namespace
 
+namespace {
+
+// A joint whose design pose (or markers' coincidence, assembled) lies outside its
+// "limits": a run from there stops at its first row.
+void WarnLimitsAtDesignPose(const Model& m, CheckReport* r) {
+  const ConstraintSystem sys(m, false);
+  const SystemState s(sys);
+  for (size_t k = 0; k < m.joints.size(); ++k) {
+    const Joint& j = m.joints[k];
+    if (!j.limits) continue;
+    const double q = LimitedCoordinate(j, s, 0.0);
+    if (q >= j.limits->first && q <= j.limits->second) continue;
+    const bool rot = LimitOnRotation(j.type);
+    const double unit = rot ? m.units.angle_to_si : m.units.length_to_si;
+    const std::string u = rot ? m.units.angle_name : m.units.length_name;
+    r->warnings.push_back({"/joints/" + std::to_string(k) + "/limits",
+                           "the design pose puts joint `" + j.name + "` at " + FormatNumber(q / unit) + " " + u +
+                               ", outside its limits [" + FormatNumber(j.limits->first / unit) + ", " +
+                               FormatNumber(j.limits->second / unit) + "] " + u,
+                           "widen the limits or change the design pose; a run from it stops at its first row"});
+  }
+}
+
+}  // namespace
+
 CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   CheckReport r;
   r.file = file;
@@ -127,6 +153,8 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   }
   std::sort(r.joints.begin(), r.joints.end());  // the JSON object's key order
   r.grubler = CalcGrublerCount(m);
+  r.couplers = static_cast<int>(m.couplers.size());
+  for (const auto& j : m.joints) r.joint_equations += EquationsRemoved(j.type);
   r.dof_after_drivers_count = r.grubler - r.drivers;
   r.planar = FindPlanarStructure(m);
   r.mobility = CalcMobility(m);
@@ -141,6 +169,7 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   AddExpectations(m, &r);
   AddGeometry(m, &r);
   AddAssembly(m, &r);
+  WarnLimitsAtDesignPose(m, &r);
   return r;
 }
 

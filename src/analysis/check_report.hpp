@@ -63,6 +63,7 @@ struct CheckReport {
   int bodies = 0, drivers = 0;
   std::vector<std::pair<std::string, int>> joints;  // type name → count, in first-seen order
   int grubler = 0;
+  int couplers = 0, joint_equations = 0;  // the count's terms: 6·bodies − joint_equations − couplers
   int dof_after_drivers_count = 0;  // Grübler count − drivers
   std::optional<PlanarStructure> planar;  // a planar mechanism: its plane and planar count
   std::optional<MobilityReport> mobility;

@@ -63,7 +63,8 @@ struct EnumNames<StopKind> {
                                                 {StopKind::AssemblyFailed, "assembly_failed"},
                                                 {StopKind::SingularPosition, "singular_position"},
                                                 {StopKind::SolveFailed, "solve_failed"},
-                                                {StopKind::Interrupted, "interrupted"}};
+                                                {StopKind::Interrupted, "interrupted"},
+                                                {StopKind::JointLimit, "joint_limit"}};
 };
 // `check`'s driving status (the `expect` key "driven").
 template <>
@@ -95,6 +96,8 @@ struct EnumNames<Quantity> {
       {Quantity::JointMoment, "joint_moment"},
       {Quantity::JointForceLocal, "joint_force_local"},
       {Quantity::JointMomentLocal, "joint_moment_local"},
+      {Quantity::CouplerEffort, "coupler_effort"},
+      {Quantity::CouplerPower, "coupler_power"},
       {Quantity::KineticEnergy, "kinetic_energy"},
       {Quantity::PotentialEnergy, "potential_energy"},
       {Quantity::EnergyBalance, "energy_balance"},

@@ -4,6 +4,8 @@
 #include <Eigen/SVD>
 #include <map>
 
+#include "constraints/couplers.hpp"
+
 namespace mechkin {
 namespace {
 
@@ -132,9 +134,10 @@ void ForceSolver::Kappa(const SystemState& s) {
     const ConstraintEntry& en = sys_.entries()[e];
     KappaTerms k;
     en.constraint->CalcKappa(MakeInput(sys_, s, e), lambda_.data() + en.first_row, &k);
-    const BodyIndex bi = en.constraint->body_i(), bj = en.constraint->body_j();
-    if (bi != kGround) kappa_.segment<3>(6 * bi) += k.F_i, kappa_.segment<3>(6 * bi + 3) += k.T_i;
-    if (bj != kGround) kappa_.segment<3>(6 * bj) += k.F_j, kappa_.segment<3>(6 * bj + 3) += k.T_j;
+    for (int side = 0; side < en.constraint->num_sides(); ++side) {
+      const BodyIndex b = en.constraint->body(side);
+      if (b != kGround) kappa_.segment<3>(6 * b) += k.F(side), kappa_.segment<3>(6 * b + 3) += k.T(side);
+    }
   }
 }
 
@@ -187,6 +190,7 @@ void ForceSolver::Solve(KinematicsWorkspace& ws, const SystemState& s, ForceResu
   out->rates = rates;
   Efforts(s, out);
   Reactions(s, out);
+  CouplerEfforts(s, out);
   Energies(s, out);
 }
 
@@ -228,7 +232,7 @@ void ForceSolver::Reactions(const SystemState& s, ForceResults* out) const {
     Vec3 F = Vec3::Zero(), T = Vec3::Zero(), F1 = Vec3::Zero(), T1 = Vec3::Zero();
     for (size_t e = 0; e < sys_.entries().size(); ++e) {
       const ConstraintEntry& en = sys_.entries()[e];
-      if (en.from_driver || en.source != static_cast<int>(j)) continue;
+      if (en.from_driver || en.from_coupler || en.source != static_cast<int>(j)) continue;
       const ConstraintInput in = MakeInput(sys_, s, e);
       JacobianBlocks blocks;
       en.constraint->CalcJacobian(in, &blocks);
@@ -258,6 +262,30 @@ void ForceSolver::Reactions(const SystemState& s, ForceResults* out) const {
     out->moment_joint[j] = sign * (C.transpose() * TP);
     out->force_joint_rate[j] = sign * (C.transpose() * LocalRate(k, F, F1));
     out->moment_joint_rate[j] = sign * (C.transpose() * TP1);
+  }
+}
+
+// Q_k = −c_k λ on each coordinate of each coupler and the power −Q_1 q̇_1 (§3.11).
+void ForceSolver::CouplerEfforts(const SystemState& s, ForceResults* out) const {
+  const size_t nc = model_.couplers.size();
+  out->coupler_effort.assign(nc, {0, 0, 0});
+  out->coupler_effort_rate.assign(nc, {0, 0, 0});
+  out->coupler_power.assign(nc, 0);
+  out->coupler_power_rate.assign(nc, 0);
+  for (size_t e = 0; e < sys_.entries().size(); ++e) {
+    const ConstraintEntry& en = sys_.entries()[e];
+    if (!en.from_coupler) continue;
+    const auto& c = static_cast<const CouplerConstraint&>(*en.constraint);
+    const double lam = lambda_[en.first_row], lam1 = lambda_rate_[en.first_row];
+    for (int k = 0; k < c.num_terms(); ++k) {
+      out->coupler_effort[en.source][k] = -c.coefficient(k) * lam;
+      out->coupler_effort_rate[en.source][k] = -c.coefficient(k) * lam1;
+    }
+    const ConstraintInput in = MakeInput(sys_, s, e);
+    const double q1 = c.CoordinateDerivative(in, 0, 1), q2 = order_ >= 2 ? c.CoordinateDerivative(in, 0, 2) : 0;
+    const double Q = out->coupler_effort[en.source][0], Q1 = out->coupler_effort_rate[en.source][0];
+    out->coupler_power[en.source] = -Q * q1;
+    out->coupler_power_rate[en.source] = -(Q1 * q1 + Q * q2);
   }
 }
 

@@ -14,6 +14,7 @@
 // A force f at body point s' contributes (f, s' × Aᵀ f).
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,12 @@ struct ForceResults {
   // body2, in global axes and in body2's joint frame (f, g, h; h = the axis).
   std::vector<Vec3> force, moment, force_rate, moment_rate;
   std::vector<Vec3> force_joint, moment_joint, force_joint_rate, moment_joint_rate;
+  // Per coupler (constraints.md §3.11): the generalized force on each coordinate,
+  // Q_k = −c_k λ (a torque on a rotation, a force on a slide, body2 relative to
+  // body1), and the power it takes from the first coordinate, −Q_1 q̇_1 (what the
+  // mesh transmits; Σ_k Q_k q̇_k = 0).
+  std::vector<std::array<double, 3>> coupler_effort, coupler_effort_rate;
+  std::vector<double> coupler_power, coupler_power_rate;
   double kinetic = 0, potential = 0;
   double balance = 0;  // Σ driver power + Σ load power − d(kinetic + potential)/dt
   bool rates = false;
@@ -57,6 +64,7 @@ class ForceSolver {
   void FindIndeterminate(const SystemState& s);
   void Efforts(const SystemState& s, ForceResults* out) const;
   void Reactions(const SystemState& s, ForceResults* out) const;
+  void CouplerEfforts(const SystemState& s, ForceResults* out) const;
   void Energies(const SystemState& s, ForceResults* out) const;
 
   const ConstraintSystem& sys_;

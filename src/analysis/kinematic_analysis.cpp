@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "analysis/assembly.hpp"
+#include "spec/diagnostic.hpp"
 #include "analysis/error_bounds.hpp"
 #include "analysis/row_selection.hpp"
 #include "analysis/singular_points.hpp"
@@ -152,6 +153,7 @@ class Stepper {
   Verdict ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag, AnalysisReport* rep);
   bool StopAtConditionMinimum(double t, double h, const StepDiagnostics& diag, AnalysisReport* rep);
   bool ActOnPending(double h, AnalysisReport* rep);
+  bool StopAtJointLimit(int step, AnalysisReport* rep);
   SingularityClassifier& Classifier();
   void StopAtBifurcation(const SingularClassification& c, AnalysisReport* rep);
   bool CrossesPassage(double t, double dt) const { return dt > 0 && passage_t_ > t - dt * (1 + 1e-12) && passage_t_ <= t; }
@@ -182,6 +184,7 @@ class Stepper {
   bool step_have_sign_ = false;
   std::unique_ptr<ForceSolver> forces_;
   ForceResults force_results_;
+  JointLimitWatch limits_{model_};
   std::unique_ptr<SensitivitySolver> sensitivity_;
 };
 
@@ -418,6 +421,41 @@ bool Stepper::ActOnPending(double h, AnalysisReport* rep) {
   return false;
 }
 
+// Joint limits (analysis/joint_limits.hpp), after the row's forces (the location's
+// solves reuse the workspace): the first row must start inside them; a step that
+// crosses a bound is located, then stops the run or, with on_limit_report, is noted.
+bool Stepper::StopAtJointLimit(int step, AnalysisReport* rep) {
+  if (limits_.empty()) return false;
+  if (step == 0) {
+    const std::optional<int> outside = limits_.Start(s_);
+    if (!outside) return false;
+    const Joint& j = model_.joints[*outside];
+    const bool rot = LimitOnRotation(j.type);
+    const double unit = rot ? model_.units.angle_to_si : model_.units.length_to_si;
+    const std::string text = "joint `" + j.name + "` starts at " + FormatNumber(LimitedCoordinate(j, s_, 0.0) / unit) +
+                             " " + (rot ? model_.units.angle_name : model_.units.length_name) + ", outside its limits [" +
+                             FormatNumber(j.limits->first / unit) + ", " + FormatNumber(j.limits->second / unit) + "]";
+    if (options_.on_limit_report) {
+      rep->notes.push_back(text);
+      return false;
+    }
+    rep->stop = StopKind::JointLimit;
+    rep->message = text + "; widen the limits or start the drivers elsewhere (`--on-limit report` goes on)";
+    return true;
+  }
+  const std::optional<JointLimitHit> hit = limits_.Check(*ws_, prev_, s_, std::max(predictor_, 1));
+  limits_.Accept(s_);
+  if (!hit) return false;
+  rep->joint_limits.push_back(*hit);
+  if (options_.on_limit_report) {
+    rep->notes.push_back(JointLimitMessage(model_, *hit, rep->rows, false));
+    return false;
+  }
+  rep->stop = StopKind::JointLimit;
+  rep->message = JointLimitMessage(model_, *hit, rep->rows, true);
+  return true;
+}
+
 void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
   const Analysis& an = *model_.analysis;
   const double h = (an.end - an.start) / an.steps;
@@ -462,6 +500,7 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       }
       diag.sensitivity = sensitivity_.get();
     }
+    if (StopAtJointLimit(step, rep)) return;
     diag.solve_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     UpdateAngleReferences(ws_->system(), &s_);
     if (options_.keep_step_diagnostics) rep->steps.push_back(diag);

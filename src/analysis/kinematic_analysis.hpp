@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/joint_limits.hpp"
 #include "analysis/forces.hpp"
 #include "analysis/sensitivity.hpp"
 #include "analysis/singularity.hpp"
@@ -52,6 +53,9 @@ struct AnalysisOptions {
   bool forces = false;
   // Parameters whose sensitivities each row carries (analysis/sensitivity.hpp).
   std::vector<std::string> sensitivity_parameters;
+  // Joint limits (analysis/joint_limits.hpp): a crossing is located and noted and the
+  // run goes on (`--on-limit report`); false: the run stops there.
+  bool on_limit_report = false;
   bool IsValid(std::string* error) const;
 };
 
@@ -70,7 +74,7 @@ struct StepDiagnostics {
 };
 
 /// Why a run ended before its last row.
-enum class StopKind { None, Refused, AssemblyFailed, SingularPosition, SolveFailed, Interrupted };
+enum class StopKind { None, Refused, AssemblyFailed, SingularPosition, SolveFailed, Interrupted, JointLimit };
 
 /// A change of the equations set aside along the motion (redundancy that follows it).
 struct Reselection {
@@ -83,6 +87,7 @@ struct AnalysisReport {
   StopKind stop = StopKind::None;
   std::optional<SingularPosition> singular;
   std::optional<LimitOfMotion> limit;     // where the position solve fails: the fold located
+  std::vector<JointLimitHit> joint_limits;  // joint limits reached, located (the first stops the run unless reported)
   std::string message;                    // failure explanation (empty on success)
   std::vector<std::string> set_aside;     // redundant equations, by name (at the start)
   std::vector<Reselection> reselections;  // later changes of that set

@@ -253,6 +253,14 @@ void MotionLayout::AddForces(const Model& model) {
     for (int a = 0; a < 3; ++a) AddRated(Quantity::JointForceLocal, nm, idx, nm + ".f" + kFrame[a], a, u.ForceName());
     for (int a = 0; a < 3; ++a) AddRated(Quantity::JointMomentLocal, nm, idx, nm + ".m" + kFrame[a], a, u.TorqueName());
   }
+  for (size_t c = 0; c < model.couplers.size(); ++c) {
+    const Coupler& cp = model.couplers[c];
+    const int idx = static_cast<int>(c);
+    for (size_t k = 0; k < cp.coordinates.size(); ++k)
+      AddRated(Quantity::CouplerEffort, cp.name, idx, cp.name + ".effort" + std::to_string(k + 1), static_cast<int>(k),
+               cp.coordinates[k].rotation ? u.TorqueName() : u.ForceName());
+    AddRated(Quantity::CouplerPower, cp.name, idx, cp.name + ".power", -1, u.PowerName());
+  }
   columns_.push_back({"kinetic_energy", u.EnergyName(), "", Quantity::KineticEnergy});
   columns_.push_back({"potential_energy", u.EnergyName(), "", Quantity::PotentialEnergy});
   columns_.push_back({"energy_balance", u.PowerName(), "", Quantity::EnergyBalance});
@@ -663,6 +671,12 @@ double* RowEvaluator::ForceValues(const ForceResults* f, double* out) const {
         std::make_pair(f ? &f->moment_joint[j] : &zero, f ? &f->moment_joint_rate[j] : &zero)};
     for (int g = 0; g < 4; ++g)
       for (int a = 0; a < 3; ++a) put((*groups[g].first)[a], (*groups[g].second)[a], g % 2 == 0 ? F : M);
+  }
+  for (size_t c = 0; c < model_.couplers.size(); ++c) {
+    const Coupler& cp = model_.couplers[c];
+    for (size_t k = 0; k < cp.coordinates.size(); ++k)
+      put(f ? f->coupler_effort[c][k] : 0, f ? f->coupler_effort_rate[c][k] : 0, cp.coordinates[k].rotation ? M : F);
+    put(f ? f->coupler_power[c] : 0, f ? f->coupler_power_rate[c] : 0, M);
   }
   *out++ = f ? f->kinetic * M : 0;
   *out++ = f ? f->potential * M : 0;

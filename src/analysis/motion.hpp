@@ -40,6 +40,8 @@ enum class Quantity {
   JointMoment,        // reaction moment about the joint origin, global (".mx")
   JointForceLocal,    // the force in body2's joint frame f/g/h (".ff")
   JointMomentLocal,   // the moment in body2's joint frame (".mf")
+  CouplerEffort,      // a coupler's torque or force on its k-th coordinate (".effort1" …), component k
+  CouplerPower,       // the power a coupler takes from its first coordinate (".power")
   KineticEnergy,
   PotentialEnergy,
   EnergyBalance,      // Σ driver + load power − d(kinetic + potential)/dt: round-off

@@ -43,6 +43,10 @@ RangeEnd Sweep(const Model& model, int d, double sign, double span, const RangeO
   if (motion.complete) {
     end.kind = IsAngleDriver(model.drivers[d]) ? "full turn" : "open";
     end.value = (v0 + sign * span) * to_file;
+  } else if (motion.report.stop == StopKind::JointLimit && !motion.report.joint_limits.empty()) {
+    // A joint's limits end the interval where the run located the crossing.
+    end.kind = "joint limit";
+    end.value = motion.report.joint_limits.front().driver_values[d] * to_file;
   } else if (motion.report.limit && motion.report.limit->fold) {
     end.kind = "limit";
     end.value = motion.report.limit->driver_values[d] * to_file;

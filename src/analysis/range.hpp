@@ -16,8 +16,9 @@ namespace mechkin {
 
 struct RangeEnd {
   // "limit" (the branch folds: stroke end, toggle), "branch point" (a singular
-  // position where branches cross), "full turn", "open" (no end within the
-  // search span), "failed" (the solve failed for another reason: see message)
+  // position where branches cross), "joint limit" (a joint's "limits" reached),
+  // "full turn", "open" (no end within the search span), "failed" (the solve
+  // failed for another reason: see message)
   std::string kind;
   double value = std::numeric_limits<double>::quiet_NaN();  // the driver's value there (file units)
   std::string message;

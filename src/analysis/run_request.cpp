@@ -68,6 +68,7 @@ RunPlan PlanRun(const Model& model, const RunRequest& r) {
   a.max_iterations = r.max_iterations;
   a.predictor_order = r.predictor_order;
   a.keep_step_diagnostics = r.keep_step_diagnostics;
+  a.on_limit_report = r.on_limit_report;
   DecideComputation(model, &plan);
   return plan;
 }

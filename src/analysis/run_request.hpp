@@ -43,6 +43,7 @@ struct RunRequest {
   int max_iterations = 25;   // Newton iterations per step
   int predictor_order = 3;   // Taylor predictor of the next pose (used up to the solved order)
   bool keep_step_diagnostics = true;  // every row's StepDiagnostics in the report (streaming runs: off)
+  bool on_limit_report = false;       // joint limits: note a crossing and go on (default: stop there)
 
   // The ranges (kMinTolerance, kMaxTolerance, order 0..kMaxOrder) and their messages are
   // the solver's (CheckSolverFields, analysis/kinematic_analysis.hpp): one definition.

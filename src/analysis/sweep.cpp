@@ -162,6 +162,7 @@ std::string StatusOf(StopKind stop) {
     case StopKind::SingularPosition: return "singular";
     case StopKind::SolveFailed: return "failed";
     case StopKind::Interrupted: return "interrupted";
+    case StopKind::JointLimit: return "joint limit";
   }
   return "failed";
 }

@@ -11,14 +11,19 @@ void CalcPVersionJacobian(const Constraint& c, const ConstraintInput& in, const 
   *p_j = 2 * J.pi_j * CalcG(in.j.p);
 }
 
+Eigen::Matrix<double, kMaxRows, 4> PVersionBlock(const ConstraintInput& in, const JacobianBlocks& J, int side) {
+  return 2 * J.Pi(side) * CalcG(in.Side(side).p);
+}
+
 void CalcPVersionRhs(const Constraint& c, const ConstraintInput& in, int k, double* rhs) {
   c.CalcRhs(in, k, rhs);
   if (k < 3) return;
   JacobianBlocks J;
   c.CalcJacobian(in, &J);
-  const Vec3& vi = k == 3 ? in.i.v : in.i.v3;
-  const Vec3& vj = k == 3 ? in.j.v : in.j.v3;
-  for (int row = 0; row < c.size(); ++row) rhs[row] -= J.pi_i.row(row).dot(vi) + J.pi_j.row(row).dot(vj);
+  for (int side = 0; side < c.num_sides(); ++side) {
+    const Vec3& v = k == 3 ? in.Side(side).v : in.Side(side).v3;
+    for (int row = 0; row < c.size(); ++row) rhs[row] -= J.Pi(side).row(row).dot(v);
+  }
 }
 
 

@@ -12,6 +12,7 @@
 // implemented once in CalcPVersion* below.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 
@@ -22,16 +23,35 @@ namespace mechkin {
 
 constexpr int kMaxRows = 3;  // largest family (spherical)
 using RowBlock = Eigen::Matrix<double, kMaxRows, 3>;
+/// Bodies ("sides") one family may couple: two for the joint families, up to six for
+/// a coupler between three joint coordinates (§3.11). Sides 0 and 1 are i and j.
+constexpr int kMaxSides = 6;
+/// Angles one family tracks over whole turns (a coupler: one per rotation coordinate).
+constexpr int kMaxAngles = 3;
 
 /// Jacobian blocks of one family; only the first size() rows are meaningful.
+/// Sides 2.. (multi-body families only) are left unset by the two-body families.
 struct JacobianBlocks {
   RowBlock r_i = RowBlock::Zero(), pi_i = RowBlock::Zero();
   RowBlock r_j = RowBlock::Zero(), pi_j = RowBlock::Zero();
+  RowBlock r_more[kMaxSides - 2], pi_more[kMaxSides - 2];
+
+  const RowBlock& R(int side) const { return side == 0 ? r_i : side == 1 ? r_j : r_more[side - 2]; }
+  const RowBlock& Pi(int side) const { return side == 0 ? pi_i : side == 1 ? pi_j : pi_more[side - 2]; }
+  RowBlock& R(int side) { return side == 0 ? r_i : side == 1 ? r_j : r_more[side - 2]; }
+  RowBlock& Pi(int side) { return side == 0 ? pi_i : side == 1 ? pi_j : pi_more[side - 2]; }
 };
 
-/// Reaction-rate terms of §1.8 for both bodies.
+/// Reaction-rate terms of §1.8 for every side.
 struct KappaTerms {
   Vec3 F_i = Vec3::Zero(), T_i = Vec3::Zero(), F_j = Vec3::Zero(), T_j = Vec3::Zero();
+  Vec3 F_more[kMaxSides - 2] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  Vec3 T_more[kMaxSides - 2] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+
+  Vec3& F(int side) { return side == 0 ? F_i : side == 1 ? F_j : F_more[side - 2]; }
+  Vec3& T(int side) { return side == 0 ? T_i : side == 1 ? T_j : T_more[side - 2]; }
+  const Vec3& F(int side) const { return side == 0 ? F_i : side == 1 ? F_j : F_more[side - 2]; }
+  const Vec3& T(int side) const { return side == 0 ? T_i : side == 1 ? T_j : T_more[side - 2]; }
 };
 
 /// What a family reads at one instant.
@@ -40,6 +60,13 @@ struct ConstraintInput {
   const BodyKinematics& j;
   Jet f;                 // driver function value and derivatives (SI); zero for joints
   double angle_ref = 0;  // unwrapping reference for multi-turn angles (rad)
+  // Multi-body families (couplers, §3.11): the kinematics of sides 2.., and the
+  // references of their second and third tracked angle.
+  std::array<const BodyKinematics*, kMaxSides - 2> more{};
+  std::array<double, kMaxAngles - 1> more_angle_refs{};
+
+  const BodyKinematics& Side(int side) const { return side == 0 ? i : side == 1 ? j : *more[side - 2]; }
+  double AngleRef(int a) const { return a == 0 ? angle_ref : more_angle_refs[a - 1]; }
 };
 
 /// Extended precision (x87 long double: 64-bit significand, 11 bits more than double)
@@ -68,16 +95,27 @@ struct ExtendedInput {
   const ExtendedPose& j;
   Real f = 0;             // driver function value (SI); zero for joints
   double angle_ref = 0;   // as in ConstraintInput
+  std::array<const ExtendedPose*, kMaxSides - 2> more{};
+  std::array<double, kMaxAngles - 1> more_angle_refs{};
+
+  const ExtendedPose& Side(int side) const { return side == 0 ? i : side == 1 ? j : *more[side - 2]; }
+  double AngleRef(int a) const { return a == 0 ? angle_ref : more_angle_refs[a - 1]; }
 };
 
 class Constraint {
  public:
-  Constraint(BodyIndex body_i, BodyIndex body_j, int size) : body_i_(body_i), body_j_(body_j), size_(size) {}
+  Constraint(BodyIndex body_i, BodyIndex body_j, int size) : size_(size) {
+    sides_[0] = body_i;
+    sides_[1] = body_j;
+  }
   virtual ~Constraint() = default;
 
   int size() const { return size_; }
-  BodyIndex body_i() const { return body_i_; }
-  BodyIndex body_j() const { return body_j_; }
+  BodyIndex body_i() const { return sides_[0]; }
+  BodyIndex body_j() const { return sides_[1]; }
+  /// Bodies the family couples: 2, or up to kMaxSides for a multi-body family.
+  int num_sides() const { return num_sides_; }
+  BodyIndex body(int side) const { return sides_[side]; }
 
   virtual void CalcPhi(const ConstraintInput& in, double* phi) const = 0;
   /// The same Φ in extended precision (the families share one template for both).
@@ -90,6 +128,10 @@ class Constraint {
   /// Multi-turn angle this family tracks (rotation drivers, screws); 0 otherwise.
   virtual double CalcAngle(const ConstraintInput&) const { return 0; }
   virtual bool HasAngle() const { return false; }
+  /// Angles tracked over whole turns (HasAngle: 1; a coupler up to kMaxAngles), and
+  /// all of them at once (the first is CalcAngle's).
+  virtual int NumAngles() const { return HasAngle() ? 1 : 0; }
+  virtual void CalcAngles(const ConstraintInput& in, double* angles) const { angles[0] = CalcAngle(in); }
   /// Φ of this family has units length^LengthPower(): SPH, DOT_2, D2DD, SDA 1; SPH_SPH,
   /// 3DRDD 2; DOT_1, GRRD 0. Residuals are divided by L^power (L the characteristic
   /// length) so that every tolerance is relative to the mechanism's size.
@@ -100,14 +142,24 @@ class Constraint {
   /// Short name of the family ("SPH", "DOT_1", ...), and of equation `row`.
   virtual const char* family() const = 0;
 
+ protected:
+  /// A multi-body family's sides (n ≤ kMaxSides, distinct bodies; ground allowed).
+  void SetSides(const BodyIndex* bodies, int n) {
+    for (int k = 0; k < n; ++k) sides_[k] = bodies[k];
+    num_sides_ = n;
+  }
+
  private:
-  BodyIndex body_i_, body_j_;
+  BodyIndex sides_[kMaxSides] = {kGround, kGround, kGround, kGround, kGround, kGround};
+  int num_sides_ = 2;
   int size_;
 };
 
 /// Φ_p blocks (size()×4) of body i and j: Φ_p = 2 Φ_π' G (§1.5).
 void CalcPVersionJacobian(const Constraint& c, const ConstraintInput& in, const JacobianBlocks& J,
                           Eigen::Matrix<double, kMaxRows, 4>* p_i, Eigen::Matrix<double, kMaxRows, 4>* p_j);
+/// Φ_p block (size()×4) of one side.
+Eigen::Matrix<double, kMaxRows, 4> PVersionBlock(const ConstraintInput& in, const JacobianBlocks& J, int side);
 /// RHS_k, p version: equal to the ω' version for k ≤ 2; for k = 3, 4 the
 /// correction −Σ Φ_π'k v_k (v3_k) of §1.7.
 void CalcPVersionRhs(const Constraint& c, const ConstraintInput& in, int k, double* rhs);

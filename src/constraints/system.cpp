@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "constraints/families.hpp"
+#include "constraints/couplers.hpp"
 
 namespace mechkin {
 namespace {
@@ -70,6 +70,25 @@ void AddJoint(const Joint& jt, int index, std::vector<ConstraintEntry>* out) {
   }
 }
 
+CoordinateTerm TermOf(const Model& model, const CouplerCoordinate& cc) {
+  const Joint& jt = model.joints[cc.joint];
+  return CoordinateTerm{cc.rotation, jt.body1, jt.body2, jt.frame1, jt.frame2, cc.coefficient};
+}
+
+// §3.11: each coupler kind as its family.
+std::unique_ptr<Constraint> MakeCoupler(const Model& model, const Coupler& cp) {
+  std::vector<CoordinateTerm> terms;
+  for (const CouplerCoordinate& cc : cp.coordinates) terms.push_back(TermOf(model, cc));
+  switch (cp.kind) {
+    case CouplerKind::Gear: return std::make_unique<GearConstraint>(terms[0], terms[1], cp.ratio);
+    case CouplerKind::Belt: return std::make_unique<BeltConstraint>(terms[0], terms[1], cp.ratio);
+    case CouplerKind::RackPinion: return std::make_unique<RackPinionConstraint>(terms[0], terms[1], cp.ratio);
+    case CouplerKind::ScrewCoupling: return std::make_unique<ScrewCouplingConstraint>(terms[0], terms[1], cp.ratio);
+    case CouplerKind::Coupling: break;
+  }
+  return std::make_unique<CouplingConstraint>(terms, cp.constant);
+}
+
 void AddDriver(const Driver& d, int index, std::vector<ConstraintEntry>* out) {
   switch (d.kind) {
     case DriverKind::JointRotation:
@@ -94,6 +113,13 @@ void AddDriver(const Driver& d, int index, std::vector<ConstraintEntry>* out) {
 
 ConstraintSystem::ConstraintSystem(const Model& model, bool include_drivers) : model_(&model) {
   for (size_t k = 0; k < model.joints.size(); ++k) AddJoint(model.joints[k], static_cast<int>(k), &entries_);
+  for (size_t k = 0; k < model.couplers.size(); ++k) {
+    const Coupler& cp = model.couplers[k];
+    Add(&entries_, MakeCoupler(model, cp), false, static_cast<int>(k),
+        {std::string(cp.kind == CouplerKind::Coupling ? "joint coordinates coupled" : "coordinates coupled by the ") +
+         (cp.kind == CouplerKind::Coupling ? "" : CouplerKindName(cp.kind))});
+    entries_.back().from_coupler = true;
+  }
   const size_t joint_entries = entries_.size();
   if (include_drivers)
     for (size_t k = 0; k < model.drivers.size(); ++k) AddDriver(model.drivers[k], static_cast<int>(k), &entries_);
@@ -105,10 +131,17 @@ ConstraintSystem::ConstraintSystem(const Model& model, bool include_drivers) : m
     if (e + 1 == joint_entries) num_joint_rows_ = row;
   }
   num_rows_ = row;
+  num_angle_slots_ = static_cast<int>(entries_.size());
+  for (ConstraintEntry& e : entries_)
+    if (e.constraint->NumAngles() > 1) {
+      e.extra_angle_slot = num_angle_slots_;
+      num_angle_slots_ += e.constraint->NumAngles() - 1;
+    }
 }
 
 std::string ConstraintSystem::SourceName(int row) const {
   const ConstraintEntry& e = entries_[row_owner_[row].first];
+  if (e.from_coupler) return model_->couplers[e.source].name;
   return e.from_driver ? model_->drivers[e.source].name : model_->joints[e.source].name;
 }
 
@@ -116,13 +149,17 @@ std::string ConstraintSystem::DescribeRow(int row) const {
   const auto [ei, r] = row_owner_[row];
   const ConstraintEntry& e = entries_[ei];
   if (e.from_driver) return "driver `" + model_->drivers[e.source].name + "`: " + e.row_what[r];
+  if (e.from_coupler) {
+    const Coupler& cp = model_->couplers[e.source];
+    return "coupler `" + cp.name + "` (" + CouplerKindName(cp.kind) + "): " + e.row_what[r];
+  }
   const Joint& j = model_->joints[e.source];
   return "joint `" + j.name + "` (" + JointTypeName(j.type) + "): " + e.row_what[r];
 }
 
 SystemState::SystemState(const ConstraintSystem& system)
     : bodies(system.num_bodies()), driver_values(system.model().drivers.size()),
-      angle_ref(system.entries().size(), 0.0) {
+      angle_ref(system.num_angle_slots(), 0.0) {
   SetDesignPose(system.model());
 }
 
@@ -144,8 +181,12 @@ void EvalDriverFunctions(const Model& model, double t, SystemState* state) {
 
 ConstraintInput MakeInput(const ConstraintSystem& sys, const SystemState& s, size_t e) {
   const ConstraintEntry& entry = sys.entries()[e];
-  return ConstraintInput{s.Kin(entry.constraint->body_i()), s.Kin(entry.constraint->body_j()),
-                         entry.from_driver ? s.driver_values[entry.source] : Jet{}, s.angle_ref[e]};
+  const Constraint& c = *entry.constraint;
+  ConstraintInput in{s.Kin(c.body_i()), s.Kin(c.body_j()), entry.from_driver ? s.driver_values[entry.source] : Jet{},
+                     s.angle_ref[e]};
+  for (int side = 2; side < c.num_sides(); ++side) in.more[side - 2] = &s.Kin(c.body(side));
+  for (int a = 1; a < c.NumAngles(); ++a) in.more_angle_refs[a - 1] = s.angle_ref[entry.extra_angle_slot + a - 1];
+  return in;
 }
 
 void CalcPhi(const ConstraintSystem& sys, const SystemState& s, Eigen::VectorXd* phi) {
@@ -171,8 +212,10 @@ void CalcPhiExtended(const ConstraintSystem& sys, const std::vector<ExtendedPose
   const auto& entries = sys.entries();
   for (size_t e = 0; e < entries.size(); ++e) {
     const Constraint& c = *entries[e].constraint;
-    const ExtendedInput in{pose(c.body_i()), pose(c.body_j()),
-                           entries[e].from_driver ? driver_values[entries[e].source] : Real(0), angle_ref[e]};
+    ExtendedInput in{pose(c.body_i()), pose(c.body_j()),
+                     entries[e].from_driver ? driver_values[entries[e].source] : Real(0), angle_ref[e]};
+    for (int side = 2; side < c.num_sides(); ++side) in.more[side - 2] = &pose(c.body(side));
+    for (int a = 1; a < c.NumAngles(); ++a) in.more_angle_refs[a - 1] = angle_ref[entries[e].extra_angle_slot + a - 1];
     c.CalcPhiExtended(in, phi->data() + entries[e].first_row);
   }
 }
@@ -188,26 +231,12 @@ void CalcJacobianDense(const ConstraintSystem& sys, const SystemState& s, Formul
     JacobianBlocks B;
     c.CalcJacobian(in, &B);
     const int r0 = entries[e].first_row, sz = c.size();
-    if (f == Formulation::Omega) {
-      if (c.body_i() != kGround) {
-        J->block(r0, 6 * c.body_i(), sz, 3) = B.r_i.topRows(sz);
-        J->block(r0, 6 * c.body_i() + 3, sz, 3) = B.pi_i.topRows(sz);
-      }
-      if (c.body_j() != kGround) {
-        J->block(r0, 6 * c.body_j(), sz, 3) = B.r_j.topRows(sz);
-        J->block(r0, 6 * c.body_j() + 3, sz, 3) = B.pi_j.topRows(sz);
-      }
-    } else {
-      Eigen::Matrix<double, kMaxRows, 4> pi, pj;
-      CalcPVersionJacobian(c, in, B, &pi, &pj);
-      if (c.body_i() != kGround) {
-        J->block(r0, 7 * c.body_i(), sz, 3) = B.r_i.topRows(sz);
-        J->block(r0, 7 * c.body_i() + 3, sz, 4) = pi.topRows(sz);
-      }
-      if (c.body_j() != kGround) {
-        J->block(r0, 7 * c.body_j(), sz, 3) = B.r_j.topRows(sz);
-        J->block(r0, 7 * c.body_j() + 3, sz, 4) = pj.topRows(sz);
-      }
+    for (int side = 0; side < c.num_sides(); ++side) {
+      const BodyIndex b = c.body(side);
+      if (b == kGround) continue;
+      J->block(r0, nc * b, sz, 3) = B.R(side).topRows(sz);
+      if (f == Formulation::Omega) J->block(r0, 6 * b + 3, sz, 3) = B.Pi(side).topRows(sz);
+      else J->block(r0, 7 * b + 3, sz, 4) = PVersionBlock(in, B, side).topRows(sz);
     }
   }
   if (f == Formulation::P)
@@ -236,9 +265,13 @@ void CalcRhs(const ConstraintSystem& sys, const SystemState& s, int k, Formulati
 void UpdateAngleReferences(const ConstraintSystem& sys, SystemState* s) {
   const auto& entries = sys.entries();
   for (size_t e = 0; e < entries.size(); ++e) {
-    if (!entries[e].constraint->HasAngle()) continue;
+    const Constraint& c = *entries[e].constraint;
+    if (!c.HasAngle()) continue;
     const ConstraintInput in = MakeInput(sys, *s, e);
-    s->angle_ref[e] = entries[e].constraint->CalcAngle(in);
+    double angles[kMaxAngles];
+    c.CalcAngles(in, angles);
+    s->angle_ref[e] = angles[0];
+    for (int a = 1; a < c.NumAngles(); ++a) s->angle_ref[entries[e].extra_angle_slot + a - 1] = angles[a];
   }
 }
 
@@ -256,9 +289,9 @@ SparseJacobian::SparseJacobian(const ConstraintSystem& sys, Formulation f, const
     for (int r = 0; r < c.size(); ++r) {
       const int row = compact[e.first_row + r];
       if (row < 0) continue;
-      for (BodyIndex b : {c.body_i(), c.body_j()})
-        if (b != kGround)
-          for (int col = 0; col < nc; ++col) trip.emplace_back(row, nc * b + col, 1.0);
+      for (int side = 0; side < c.num_sides(); ++side)
+        if (c.body(side) != kGround)
+          for (int col = 0; col < nc; ++col) trip.emplace_back(row, nc * c.body(side) + col, 1.0);
     }
   }
   if (f == Formulation::P)
@@ -273,9 +306,9 @@ SparseJacobian::SparseJacobian(const ConstraintSystem& sys, Formulation f, const
     slot_start_.push_back(static_cast<int>(slot_.size()));
     for (int r = 0; r < c.size(); ++r) {
       const int row = compact[e.first_row + r];
-      for (BodyIndex b : {c.body_i(), c.body_j()})
+      for (int side = 0; side < c.num_sides(); ++side)
         for (int col = 0; col < nc; ++col)
-          slot_.push_back(row >= 0 && b != kGround ? &J_.coeffRef(row, nc * b + col) : nullptr);
+          slot_.push_back(row >= 0 && c.body(side) != kGround ? &J_.coeffRef(row, nc * c.body(side) + col) : nullptr);
     }
   }
   if (f == Formulation::P)
@@ -291,14 +324,15 @@ void SparseJacobian::Fill(const ConstraintSystem& sys, const SystemState& s) {
     const ConstraintInput in = MakeInput(sys, s, e);
     JacobianBlocks B;
     c.CalcJacobian(in, &B);
-    Eigen::Matrix<double, kMaxRows, 4> pi, pj;
-    if (f_ == Formulation::P) CalcPVersionJacobian(c, in, B, &pi, &pj);
+    Eigen::Matrix<double, kMaxRows, 4> P[kMaxSides];
+    if (f_ == Formulation::P)
+      for (int side = 0; side < c.num_sides(); ++side) P[side] = PVersionBlock(in, B, side);
     double* const* slot = slot_.data() + slot_start_[e];
     for (int r = 0; r < c.size(); ++r) {
-      for (int side = 0; side < 2; ++side) {
-        const RowBlock& Br = side == 0 ? B.r_i : B.r_j;
-        const RowBlock& Bp = side == 0 ? B.pi_i : B.pi_j;
-        const auto& Pp = side == 0 ? pi : pj;
+      for (int side = 0; side < c.num_sides(); ++side) {
+        const RowBlock& Br = B.R(side);
+        const RowBlock& Bp = B.Pi(side);
+        const auto& Pp = P[side];
         for (int col = 0; col < nc; ++col, ++slot) {
           if (!*slot) continue;
           **slot = col < 3 ? Br(r, col) : (f_ == Formulation::Omega ? Bp(r, col - 3) : Pp(r, col - 3));

@@ -28,7 +28,9 @@ struct ConstraintEntry {
   std::unique_ptr<Constraint> constraint;
   int first_row = 0;
   bool from_driver = false;
-  int source = -1;                    // joint or driver index in the model
+  bool from_coupler = false;          // a coupler between joint coordinates (§3.11)
+  int source = -1;                    // joint, coupler or driver index in the model
+  int extra_angle_slot = -1;          // SystemState::angle_ref of its second and third angle
   std::vector<std::string> row_what;  // per equation: what it fixes, in joint vocabulary
 };
 
@@ -40,21 +42,24 @@ class ConstraintSystem {
   const Model& model() const { return *model_; }
   const std::vector<ConstraintEntry>& entries() const { return entries_; }
   int num_rows() const { return num_rows_; }
+  /// Rows of the mechanism itself: joints, then couplers (drivers follow).
   int num_joint_rows() const { return num_joint_rows_; }
+  /// Length of SystemState::angle_ref: one per entry, then the couplers' further angles.
+  int num_angle_slots() const { return num_angle_slots_; }
   int num_bodies() const { return model_->num_bodies(); }
   int num_columns(Formulation f) const { return (f == Formulation::Omega ? 6 : 7) * num_bodies(); }
   /// Entry owning equation `row`, and the equation's index inside it.
   std::pair<int, int> Locate(int row) const { return row_owner_[row]; }
   /// "joint `J4` (revolute): rotation about its frame's f axis".
   std::string DescribeRow(int row) const;
-  /// Name of the joint or driver that owns `row`.
+  /// Name of the joint, coupler or driver that owns `row`.
   std::string SourceName(int row) const;
 
  private:
   const Model* model_;
   std::vector<ConstraintEntry> entries_;
   std::vector<std::pair<int, int>> row_owner_;
-  int num_rows_ = 0, num_joint_rows_ = 0;
+  int num_rows_ = 0, num_joint_rows_ = 0, num_angle_slots_ = 0;
 };
 
 /// Per-instant state: body kinematics, driver function values, angle references.
@@ -62,7 +67,7 @@ struct SystemState {
   double t = 0;
   std::vector<BodyKinematics> bodies;
   std::vector<Jet> driver_values;    // per model driver, SI
-  std::vector<double> angle_ref;     // per entry, for multi-turn angles
+  std::vector<double> angle_ref;     // per angle slot (ConstraintSystem::num_angle_slots), multi-turn angles
 
   explicit SystemState(const ConstraintSystem& system);
   const BodyKinematics& Kin(BodyIndex b) const { return b == kGround ? GroundKinematics() : bodies[b]; }

@@ -46,6 +46,7 @@ json MobilityJson(const MobilityReport& r, int drivers) {
   j["free_after_drivers"] = r.dof_after_drivers;
   j["driven"] = DrivingStatusName(r.driving_status);
   j["conflicting_drivers"] = r.conflicting_drivers;
+  if (!r.conflicting_couplers.empty()) j["conflicting_couplers"] = r.conflicting_couplers;
   j["remaining_freedoms"] = r.remaining_freedoms;
   j["verdict"] = r.verdict;
   j["suggestions"] = r.suggestions;
@@ -70,7 +71,7 @@ void PrintMobility(const MobilityReport& m, int drivers, std::ostream& out) {
   for (const auto& e : m.redundant_equations) {
     out << "    - " << e.description;
     if (!e.fixed_by.empty()) {
-      out << " is already fixed by joints ";
+      out << (e.couplers_in_fixed_by ? " is already fixed by joints and couplers " : " is already fixed by joints ");
       for (size_t k = 0; k < e.fixed_by.size(); ++k) out << (k ? ", " : "") << e.fixed_by[k];
     }
     out << "\n";
@@ -84,6 +85,8 @@ void PrintMobility(const MobilityReport& m, int drivers, std::ostream& out) {
   if (!m.conflicting_drivers.empty()) {
     out << " (conflicting drivers: ";
     for (size_t k = 0; k < m.conflicting_drivers.size(); ++k) out << (k ? ", " : "") << m.conflicting_drivers[k];
+    if (!m.conflicting_couplers.empty()) out << "; against couplers: ";
+    for (size_t k = 0; k < m.conflicting_couplers.size(); ++k) out << (k ? ", " : "") << m.conflicting_couplers[k];
     out << ")";
   }
   if (m.locked && !m.conflicting_drivers.empty()) out << " — a consequence: the joints already lock the mechanism";
@@ -103,8 +106,8 @@ void PrintMobility(const MobilityReport& m, int drivers, std::ostream& out) {
 void PrintPlanar(const PlanarStructure& p, int drivers, std::ostream& out) {
   char normal[96];
   std::snprintf(normal, sizeof normal, "[%.6g, %.6g, %.6g]", p.normal.x() + 0.0, p.normal.y() + 0.0, p.normal.z() + 0.0);
-  out << "  planar: every body moves parallel to the plane normal to " << normal << "; planar count 3n − 2j₁ − j₂ = "
-      << p.count << " (after drivers: " << p.count - drivers << ")\n";
+  out << "  planar: every body moves parallel to the plane normal to " << normal << "; planar count 3n − 2j₁ − j₂"
+      << (p.couplers > 0 ? " − couplers" : "") << " = " << p.count << " (after drivers: " << p.count - drivers << ")\n";
 }
 
 json PlanarJson(const PlanarStructure& p, int drivers) {
@@ -214,8 +217,12 @@ void PrintSummary(const CheckReport& r, std::ostream& out) {
     total += r.joints[k].second;
   }
   out << (r.joints.empty() ? "none" : "") << " (" << total << " total)\n";
+  if (r.couplers > 0) out << "  couplers: " << r.couplers << " (one equation each)\n";
   out << "  drivers: " << r.drivers << "\n";
-  out << "  Grübler–Kutzbach count: " << r.grubler << " (after drivers: " << r.dof_after_drivers_count << ")\n";
+  out << "  Grübler–Kutzbach count: " << r.grubler;
+  if (r.couplers > 0)
+    out << " (6n − joint equations − couplers = 6·" << r.bodies << " − " << r.joint_equations << " − " << r.couplers << ")";
+  out << " (after drivers: " << r.dof_after_drivers_count << ")\n";
   if (r.planar) PrintPlanar(*r.planar, r.drivers, out);
   if (r.mobility) PrintMobility(*r.mobility, r.drivers, out);
   if (r.branches)
@@ -245,6 +252,7 @@ json CheckReportJson(const CheckReport& r) {
   j["joints"] = joints;
   j["drivers"] = r.drivers;
   j["grubler"] = r.grubler;
+  if (r.couplers > 0) j["couplers"] = r.couplers;
   j["dof_after_drivers_count"] = r.dof_after_drivers_count;
   if (r.planar) j["planar"] = PlanarJson(*r.planar, r.drivers);
   if (r.mobility) j["mobility"] = MobilityJson(*r.mobility, r.drivers);

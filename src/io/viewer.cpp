@@ -144,6 +144,22 @@ void WriteJoints(const Model& model, double L, Json* j) {
   j->Raw("]");
 }
 
+// Couplers (constraints.md §3.11): the joints each one ties, drawn as a dashed line
+// through the joints' origins.
+void WriteCouplers(const Model& model, Json* j) {
+  j->Key("couplers");
+  j->Raw("[");
+  for (size_t k = 0; k < model.couplers.size(); ++k) {
+    const Coupler& c = model.couplers[k];
+    j->Raw(k ? ",{" : "{");
+    j->Key("name"), j->Str(c.name), j->Raw(","), j->Key("type"), j->Str(CouplerKindName(c.kind)), j->Raw(",");
+    j->Key("joints"), j->Raw("[");
+    for (size_t t = 0; t < c.coordinates.size(); ++t) { if (t) j->Raw(","); j->Num(c.coordinates[t].joint); }
+    j->Raw("]}");
+  }
+  j->Raw("]");
+}
+
 // Columns the page can plot: all but Euler parameters (the pose's rotation).
 bool Plottable(const ColumnDescriptor& d) { return d.quantity != Quantity::EulerParameter && d.quantity != Quantity::Time; }
 
@@ -337,6 +353,8 @@ std::string SceneData(const Model& model, const Motion& m, const SceneOptions& o
   WriteBodies(model, m, sp, frames, L, &j);
   j.Raw(",");
   WriteJoints(model, L, &j);
+  j.Raw(",");
+  WriteCouplers(model, &j);
   j.Raw(",");
   WriteTraces(model, L, &j);
   j.Raw(",");

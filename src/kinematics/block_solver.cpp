@@ -27,9 +27,9 @@ BlockSolver::BlockSolver(const ConstraintSystem& sys, const std::vector<int>& ac
     }
     for (int e : entries) {
       const Constraint& c = *sys.entries()[e].constraint;
-      for (BodyIndex body : {c.body_i(), c.body_j()})
-        if (body != kGround)
-          for (int q = 0; q < 6; ++q) coupling.insert(6 * body + q);
+      for (int side = 0; side < c.num_sides(); ++side)
+        if (c.body(side) != kGround)
+          for (int q = 0; q < 6; ++q) coupling.insert(6 * c.body(side) + q);
     }
     b.entry_list.assign(entries.begin(), entries.end());
     b.bodies.assign(bodies.begin(), bodies.end());
@@ -60,11 +60,11 @@ void BlockSolver::FillBlock(Block& b, const SystemState& s, bool with_coupling) 
     for (size_t r = 0; r < b.rows.size(); ++r) {
       if (b.entries[r].first != e) continue;
       const int lr = b.entries[r].second;
-      for (int side = 0; side < 2; ++side) {
-        const BodyIndex body = side == 0 ? c.body_i() : c.body_j();
+      for (int side = 0; side < c.num_sides(); ++side) {
+        const BodyIndex body = c.body(side);
         if (body == kGround) continue;
         for (int q = 0; q < 6; ++q) {
-          const double v = q < 3 ? (side == 0 ? jb.r_i : jb.r_j)(lr, q) : (side == 0 ? jb.pi_i : jb.pi_j)(lr, q - 3);
+          const double v = q < 3 ? jb.R(side)(lr, q) : jb.Pi(side)(lr, q - 3);
           const int col = 6 * body + q;
           const int pos = col_pos_[col];
           if (pos >= 0 && std::binary_search(b.cols.begin(), b.cols.end(), col)) b.J(r, pos) = v;

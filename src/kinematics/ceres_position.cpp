@@ -12,8 +12,8 @@ class EntryCost : public ceres::CostFunction {
       : sys_(sys), s_(s), entry_(entry), local_rows_(std::move(local_rows)), scales_(std::move(scales)) {
     const Constraint& c = *sys.entries()[entry].constraint;
     set_num_residuals(static_cast<int>(local_rows_.size()));
-    for (BodyIndex b : {c.body_i(), c.body_j()})
-      if (b != kGround) {
+    for (int side = 0; side < c.num_sides(); ++side)
+      if (c.body(side) != kGround) {
         mutable_parameter_block_sizes()->push_back(3);
         mutable_parameter_block_sizes()->push_back(4);
       }
@@ -21,35 +21,37 @@ class EntryCost : public ceres::CostFunction {
 
   bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override {
     const Constraint& c = *sys_.entries()[entry_].constraint;
-    BodyKinematics kin[2];
-    double inv_norm[2] = {1, 1};
+    BodyKinematics kin[kMaxSides];
+    double inv_norm[kMaxSides] = {1, 1, 1, 1, 1, 1};
     int block = 0;
-    const BodyIndex bodies[2] = {c.body_i(), c.body_j()};
-    for (int side = 0; side < 2; ++side) {
-      if (bodies[side] == kGround) continue;
+    const int sides = c.num_sides();
+    for (int side = 0; side < sides; ++side) {
+      if (c.body(side) == kGround) continue;
       const Vec3 r(params[block][0], params[block][1], params[block][2]);
       const Vec4 p(params[block + 1][0], params[block + 1][1], params[block + 1][2], params[block + 1][3]);
       kin[side].SetPose(r, p.normalized());
       inv_norm[side] = 1 / p.norm();
       block += 2;
     }
-    const ConstraintInput in{bodies[0] == kGround ? GroundKinematics() : kin[0],
-                             bodies[1] == kGround ? GroundKinematics() : kin[1],
-                             sys_.entries()[entry_].from_driver ? s_.driver_values[sys_.entries()[entry_].source] : Jet{},
-                             s_.angle_ref[entry_]};
+    const auto side_kin = [&](int side) -> const BodyKinematics& {
+      return c.body(side) == kGround ? GroundKinematics() : kin[side];
+    };
+    const ConstraintEntry& entry = sys_.entries()[entry_];
+    ConstraintInput in{side_kin(0), side_kin(1), entry.from_driver ? s_.driver_values[entry.source] : Jet{},
+                       s_.angle_ref[entry_]};
+    for (int side = 2; side < sides; ++side) in.more[side - 2] = &side_kin(side);
+    for (int a = 1; a < c.NumAngles(); ++a) in.more_angle_refs[a - 1] = s_.angle_ref[entry.extra_angle_slot + a - 1];
     double phi[kMaxRows];
     c.CalcPhi(in, phi);
     for (size_t k = 0; k < local_rows_.size(); ++k) residuals[k] = phi[local_rows_[k]] * scales_[k];
     if (!jacobians) return true;
     JacobianBlocks J;
     c.CalcJacobian(in, &J);
-    Eigen::Matrix<double, kMaxRows, 4> Pi, Pj;
-    CalcPVersionJacobian(c, in, J, &Pi, &Pj);
     block = 0;
-    for (int side = 0; side < 2; ++side) {
-      if (bodies[side] == kGround) continue;
-      const RowBlock& Br = side == 0 ? J.r_i : J.r_j;
-      const auto& Bp = side == 0 ? Pi : Pj;
+    for (int side = 0; side < sides; ++side) {
+      if (c.body(side) == kGround) continue;
+      const RowBlock& Br = J.R(side);
+      const Eigen::Matrix<double, kMaxRows, 4> Bp = PVersionBlock(in, J, side);
       for (size_t k = 0; k < local_rows_.size(); ++k) {
         const int r = local_rows_[k];
         if (jacobians[block])
@@ -110,10 +112,10 @@ SolveSummary SolvePositionCeres(const ConstraintSystem& sys, const std::vector<i
     if (entry_rows[e].empty()) continue;
     const Constraint& c = *sys.entries()[e].constraint;
     std::vector<double*> blocks;
-    for (BodyIndex b : {c.body_i(), c.body_j()})
-      if (b != kGround) {
-        blocks.push_back(&params[7 * b]);
-        blocks.push_back(&params[7 * b + 3]);
+    for (int side = 0; side < c.num_sides(); ++side)
+      if (c.body(side) != kGround) {
+        blocks.push_back(&params[7 * c.body(side)]);
+        blocks.push_back(&params[7 * c.body(side) + 3]);
       }
     problem.AddResidualBlock(new EntryCost(sys, *s, static_cast<int>(e), entry_rows[e], entry_scales[e]), nullptr, blocks);
   }

@@ -10,7 +10,7 @@ namespace mechkin {
 int CalcGrublerCount(const Model& model) {
   int m = 6 * model.num_bodies();
   for (const auto& j : model.joints) m -= EquationsRemoved(j.type);
-  return m;
+  return m - static_cast<int>(model.couplers.size());  // one equation per coupler (§3.11)
 }
 
 namespace {
@@ -65,7 +65,8 @@ std::optional<PlanarStructure> FindPlanarStructure(const Model& m) {
     if (j.type == JointType::Planar) ++p.planar_joints;
     else ++p.lower_pairs;
   }
-  p.count = 3 * m.num_bodies() - 2 * p.lower_pairs - p.higher_pairs;
+  p.couplers = static_cast<int>(m.couplers.size());
+  p.count = 3 * m.num_bodies() - 2 * p.lower_pairs - p.higher_pairs - p.couplers;
   return p;
 }
 

@@ -1,7 +1,7 @@
 // Grübler–Kutzbach count (constraints.md §6):
 //   M = 6 n − 5 n_J1 − 4 n_J2 − 3 n_J3 − 1 n_SS,
-// i.e. 6 per moving body minus the equations each joint removes. Drivers are
-// not counted. For a planar mechanism also the planar count 3 n − 2 j₁ − j₂.
+// i.e. 6 per moving body minus the equations each joint removes, minus one per
+// coupler between joint coordinates (§3.11). Drivers are not counted. For a planar mechanism also the planar count 3 n − 2 j₁ − j₂.
 #pragma once
 
 #include <optional>
@@ -18,7 +18,8 @@ struct PlanarStructure {
   int lower_pairs = 0;          // j₁: revolute (axes along the normal) and prismatic (across it)
   int higher_pairs = 0;         // j₂: distance links (one equation in the plane)
   int planar_joints = 0;        // planar joints on the plane: no equation in the plane
-  int count = 0;                // 3 n − 2 j₁ − j₂
+  int couplers = 0;             // couplers between joint coordinates: one equation each (§3.11)
+  int count = 0;                // 3 n − 2 j₁ − j₂ − couplers
 };
 
 /// The planar structure, when at least one joint has an axis and every revolute

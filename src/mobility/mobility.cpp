@@ -168,6 +168,20 @@ void SeekGenericRank(const Model& model, const ConstraintSystem& joints, const S
   }
 }
 
+// The couplers in the combinations that make driver rows dependent (§3.11, §6.4).
+void NameConflictingCouplers(const ConstraintSystem& full, const SparseRowRank& fr, MobilityReport* rep) {
+  std::set<std::string> names;
+  for (int row : fr.dependent()) {
+    if (row < full.num_joint_rows()) continue;
+    const Eigen::VectorXd coef = fr.DependentCombination(row);
+    const double cmax = coef.cwiseAbs().maxCoeff();
+    for (int k = 0; k < coef.size(); ++k)
+      if (cmax > 0 && std::abs(coef[k]) > 1e-6 * cmax && full.entries()[full.Locate(k).first].from_coupler)
+        names.insert(full.SourceName(k));
+  }
+  rep->conflicting_couplers.assign(names.begin(), names.end());
+}
+
 // Rank of joints + drivers together at the same pose: freedoms left, conflicting drivers.
 Eigen::MatrixXd DrivingRank(const Model& model, const ConstraintSystem& full, const SystemState& state, int joint_rank,
                             MobilityReport* rep_ptr) {
@@ -175,7 +189,7 @@ Eigen::MatrixXd DrivingRank(const Model& model, const ConstraintSystem& full, co
   const int n = model.num_bodies();
   SystemState fstate(full);
   fstate.bodies = state.bodies;
-  fstate.angle_ref.assign(full.entries().size(), 0.0);
+  fstate.angle_ref.assign(full.num_angle_slots(), 0.0);
   const Eigen::MatrixXd Jf = ScaledJacobian(full, fstate);
   const RankInfo finfo = CalcRank(Jf);
   rep.dof_after_drivers = 6 * n - finfo.rank;
@@ -186,7 +200,7 @@ Eigen::MatrixXd DrivingRank(const Model& model, const ConstraintSystem& full, co
     if (row >= full.num_joint_rows()) conflicting.insert(full.SourceName(row));
   rep.conflicting_drivers.assign(conflicting.begin(), conflicting.end());
   rep.driver_rank_deficit = static_cast<int>(model.drivers.size()) - (finfo.rank - joint_rank);
-
+  if (!conflicting.empty() && !model.couplers.empty()) NameConflictingCouplers(full, SparseRowRank(Jf.sparseView()), &rep);
   return Jf;
 }
 
@@ -499,7 +513,7 @@ bool FindRegularDrivenPose(const Model& model, const ConstraintSystem& joints, c
     if (!AssembleMinNorm(joints, AllRows(joints), opt, &moved).success) continue;
     SystemState fstate(full);
     fstate.bodies = moved.bodies;
-    fstate.angle_ref.assign(full.entries().size(), 0.0);
+    fstate.angle_ref.assign(full.num_angle_slots(), 0.0);
     const int rank = CalcRank(ScaledJacobian(full, fstate)).rank;
     if (rank > best) {
       best = rank;
@@ -521,7 +535,10 @@ void NameRedundantEquationsSparse(const ConstraintSystem& joints, const SparseRo
       const double cmax = coef.cwiseAbs().maxCoeff();
       std::set<std::string> names;
       for (int k = 0; k < coef.size(); ++k)
-        if (cmax > 0 && std::abs(coef[k]) > 1e-6 * cmax) names.insert(joints.SourceName(k));
+        if (cmax > 0 && std::abs(coef[k]) > 1e-6 * cmax && joints.SourceName(k) != joints.SourceName(row)) {
+          names.insert(joints.SourceName(k));
+          eq.couplers_in_fixed_by |= joints.entries()[joints.Locate(k).first].from_coupler;
+        }
       names.erase(joints.SourceName(row));
       eq.fixed_by.assign(names.begin(), names.end());
     }
@@ -623,7 +640,7 @@ MobilityReport CalcMobilitySparse(const Model& model) {
 
   SystemState fstate(full);
   fstate.bodies = state.bodies;
-  fstate.angle_ref.assign(full.entries().size(), 0.0);
+  fstate.angle_ref.assign(full.num_angle_slots(), 0.0);
   const Eigen::SparseMatrix<double> Jf = ScaledSparseJacobian(full, fstate, AllRows(full));
   const SparseRowRank fr(Jf);
   rep.dof_after_drivers = 6 * n - fr.rank();
@@ -632,6 +649,7 @@ MobilityReport CalcMobilitySparse(const Model& model) {
     if (row >= full.num_joint_rows()) conflicting.insert(full.SourceName(row));
   rep.conflicting_drivers.assign(conflicting.begin(), conflicting.end());
   rep.driver_rank_deficit = static_cast<int>(model.drivers.size()) - (fr.rank() - jr.rank());
+  if (!conflicting.empty() && !model.couplers.empty()) NameConflictingCouplers(full, fr, &rep);
   FindIdleFreedoms(model, state, Jf, &rep);
   ClassifyDriving(model, [&] { return fr.NullSpace(kMaxNamedFreedoms); }, &rep);
   if (rep.redundant > 0) SetOverconstrainedVerdict(&rep);
@@ -669,6 +687,7 @@ MobilityReport CalcMobility(const Model& model) {
       const int design_rank = 6 * n - rep.dof_after_drivers;
       const RankInfo design_full = CalcRank(Jf);
       rep.conflicting_drivers.clear();
+      rep.conflicting_couplers.clear();
       rep.remaining_freedoms.clear();
       Jf = DrivingRank(model, full, generic, info.rank, &rep);
       rep.singular_lost = 6 * n - rep.dof_after_drivers - design_rank;

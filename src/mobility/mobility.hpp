@@ -31,7 +31,8 @@ enum class MobilityVerdict { Regular, Overconstrained };
 struct RedundantEquation {
   int row;
   std::string description;          // "joint `J4` (revolute): rotation about its frame's f axis"
-  std::vector<std::string> fixed_by;  // joints whose equations already fix it
+  std::vector<std::string> fixed_by;  // joints (and couplers, §3.11) whose equations already fix it
+  bool couplers_in_fixed_by = false;
 };
 
 struct IdleFreedom {
@@ -60,6 +61,9 @@ struct MobilityReport {
   int dof_after_drivers = 0;
   DrivingStatus driving_status = DrivingStatus::Full;
   std::vector<std::string> conflicting_drivers;
+  /// Couplers (§3.11) whose equation, with the joints', contradicts a conflicting
+  /// driver: the rows a conflicting driver's row is a combination of.
+  std::vector<std::string> conflicting_couplers;
   std::vector<std::string> remaining_freedoms;
   MobilityVerdict verdict_kind = MobilityVerdict::Regular;
   std::string verdict;  // the verdict in words (empty when regular)

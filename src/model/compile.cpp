@@ -28,6 +28,8 @@ std::optional<Model> Compiler::Run() {
   for (const BodySpec& b : spec_.bodies) Place(Section::Bodies, b.pointer), CompileBody(b);
   for (const JointSpec& j : spec_.joints) Place(Section::Joints, j.pointer), CompileJoint(j);
   if (by_markers_) PlaceByMarkers();
+  for (const JointSpec& j : spec_.joints) Place(Section::Joints, j.pointer), CompileJointLimits(j);
+  for (const CouplerSpec& c : spec_.couplers) Place(Section::Couplers, c.pointer), CompileCoupler(c);
   for (const DriverSpec& d : spec_.drivers) Place(Section::Drivers, d.pointer), CompileDriver(d);
   CompileAnalysis();
   for (const OutputSpec& o : spec_.outputs) Place(Section::Outputs, o.pointer), CompileOutput(o);

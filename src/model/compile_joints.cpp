@@ -167,4 +167,24 @@ void Compiler::AddJoint(const std::string& name, const std::optional<Vec3>& orig
   model_.joints.push_back(joint);
 }
 
+// "limits": [lo, hi] in the angle unit (revolute, screw) or the length unit
+// (prismatic, cylindrical), lo < hi; the joint must have compiled.
+void Compiler::CompileJointLimits(const JointSpec& j) {
+  if (!j.limits || !j.name) return;
+  const auto it = joint_index_.find(*j.name);
+  if (it == joint_index_.end() || it->second < 0) return;
+  Joint& joint = model_.joints[it->second];
+  const auto lo = Value((*j.limits)[0]), hi = Value((*j.limits)[1]);
+  if (!lo || !hi) return;
+  if (!std::isfinite(*lo) || !std::isfinite(*hi) || !(*lo < *hi)) {
+    Error(j.pointer + "/limits", "'limits' must be [lo, hi] with lo < hi, not [" + FormatNumber(*lo) + ", " +
+                                     FormatNumber(*hi) + "]",
+          "give the lower limit first; the design pose (or the markers' coincidence) is 0");
+    return;
+  }
+  const bool rotation = joint.type == JointType::Revolute || joint.type == JointType::Screw;
+  const double unit = rotation ? angle_ : length_;
+  joint.limits = std::make_pair(*lo * unit, *hi * unit);
+}
+
 }  // namespace mechkin

@@ -100,6 +100,7 @@ class Compiler {
                 const std::optional<Vec3>& axis1, const std::optional<Vec3>& axis2,
                 const std::optional<Vec3>& normal, const std::optional<Vec3>& p1, const std::optional<Vec3>& p2,
                 Joint* joint);
+  void CompileJointLimits(const JointSpec& j);
   void CompileDriver(const DriverSpec& d);
   bool DriverOnBody(const DriverSpec& d, Driver* drv);
   bool DriverOnJoint(const DriverSpec& d, bool rotation, Driver* drv);
@@ -107,6 +108,15 @@ class Compiler {
   bool DriverOnAngle(const DriverSpec& d, Driver* drv);
   bool DriverBetweenPoints(const DriverSpec& d, Driver* drv);
   std::optional<int> FindJoint(const std::optional<std::string>& name, const std::string& ptr, bool did_you_mean);
+
+  // Couplers (compile_couplers.cpp).
+  void CompileCoupler(const CouplerSpec& c);
+  bool CompileCoupling(const CouplerSpec& c, Coupler* cp);
+  std::optional<int> CouplerJoint(const std::string& name, const std::string& ptr);
+  std::optional<CouplerCoordinate> CouplerTerm(const std::string& name, const std::string& ptr,
+                                               std::optional<bool> rotation, const std::string& type);
+  std::optional<double> CouplerFactor(const std::optional<Scalar>& s, const std::string& key, const std::string& ptr,
+                                      double unit);
 
   // Outputs, loads, functions (compile_outputs.cpp).
   std::optional<TimeFunction> CompileFunction(const FunctionSpec& f, double scale);
@@ -168,7 +178,7 @@ class Compiler {
   std::map<std::string, BodyIndex> body_index_;
   std::map<BodyIndex, std::map<std::string, std::optional<JointFrame>>> markers_;  // nullopt: the marker failed
   std::map<std::string, int> joint_index_;
-  std::set<std::string> driver_names_, output_names_;
+  std::set<std::string> driver_names_, output_names_, coupler_names_;
   std::vector<std::string> driver_pointers_;  // per model driver, its place in the file
   double length_ = 1, angle_ = 1;
   bool by_markers_ = false;       // some joint names markers: positions are optional guesses

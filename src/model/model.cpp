@@ -26,6 +26,17 @@ const char* JointTypeName(JointType type) {
   return "?";
 }
 
+const char* CouplerKindName(CouplerKind kind) {
+  switch (kind) {
+    case CouplerKind::Gear: return "gear";
+    case CouplerKind::Belt: return "belt";
+    case CouplerKind::RackPinion: return "rack_pinion";
+    case CouplerKind::ScrewCoupling: return "screw_coupling";
+    case CouplerKind::Coupling: return "coupling";
+  }
+  return "?";
+}
+
 bool Model::HasForces() const {
   if (!loads.empty() || gravity.norm() > 0) return true;
   for (const auto& b : bodies)

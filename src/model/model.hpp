@@ -82,6 +82,31 @@ struct Joint {
   // Defined on two markers: its frames are the markers' (not the design pose's), so
   // its coordinate is 0 where the markers coincide, whatever the pose drawn.
   bool on_markers = false;
+  // [lo, hi] (SI) of the angle (revolute, screw) or slide (prismatic, cylindrical),
+  // from the coordinate's zero; a run that reaches one stops there (analysis/joint_limits.hpp).
+  std::optional<std::pair<double, double>> limits;
+};
+
+enum class CouplerKind { Gear, Belt, RackPinion, ScrewCoupling, Coupling };
+
+/// One joint coordinate a coupler reads: the joint's rotation (rad) or slide (m),
+/// 0 at the design pose (a joint on markers: where its markers coincide).
+struct CouplerCoordinate {
+  int joint = -1;
+  bool rotation = true;
+  double coefficient = 1;  // c_k of the general coupling (SI: per rad, per m)
+};
+
+/// A coupler between joint coordinates (docs/format.md "couplers", constraints.md
+/// §3.11): one equation Σ c_k q_k = c_0 (SI).
+struct Coupler {
+  std::string name;
+  CouplerKind kind = CouplerKind::Gear;
+  std::vector<CouplerCoordinate> coordinates;  // 2 (3 for a coupling)
+  // gear, belt: the ratio r (θ₂ = r θ₁); rack_pinion: the pitch radius (m);
+  // screw_coupling: the pitch (m per turn). Unused by a coupling.
+  double ratio = 0;
+  double constant = 0;  // c_0 of a coupling (SI, after the scaling of §3.11)
 };
 
 enum class DriverKind { JointRotation, BodyRotation, JointTranslation, Distance };
@@ -181,6 +206,7 @@ struct Model {
   Units units;
   std::vector<Body> bodies;  // moving bodies only
   std::vector<Joint> joints;
+  std::vector<Coupler> couplers;  // between joint coordinates, after the joints in Φ
   std::vector<Driver> drivers;
   std::vector<Output> outputs;
   Vec3 gravity = Vec3::Zero();  // m/s²
@@ -211,6 +237,8 @@ inline bool IsAngleDriver(const Driver& d) {
   return d.kind == DriverKind::JointRotation || d.kind == DriverKind::BodyRotation;
 }
 
+/// "gear", "belt", "rack_pinion", "screw_coupling", "coupling" (the file's words).
+const char* CouplerKindName(CouplerKind kind);
 /// Number of equations a joint removes (format-v1 joint table).
 int EquationsRemoved(JointType type);
 /// Lower-case name as in the file ("revolute", ...).

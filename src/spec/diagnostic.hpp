@@ -18,7 +18,7 @@ struct Diagnostic {
 };
 
 /// The sections of a file in the order they are read and compiled.
-enum class Section { Parse, Header, Parameters, Units, Ground, Bodies, Joints, Drivers, Analysis, Outputs, Expect,
+enum class Section { Parse, Header, Parameters, Units, Ground, Bodies, Joints, Couplers, Drivers, Analysis, Outputs, Expect,
                      Gravity, Loads, View, WholeModel };
 
 /// Errors and warnings, each with its place (section, element index) in the file.

@@ -80,6 +80,7 @@ void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, bool by_mar
 bool JointsUseMarkers(const json& doc);
 void ReadJoint(JsonReader& rd, const json& j, const std::string& ptr, MechanismSpec* spec);
 void ReadDriver(JsonReader& rd, const json& d, const std::string& ptr, MechanismSpec* spec);
+void ReadCoupler(JsonReader& rd, const json& c, const std::string& ptr, MechanismSpec* spec);
 void ReadOutput(JsonReader& rd, const json& o, const std::string& ptr, MechanismSpec* spec);
 void ReadGround(JsonReader& rd, const json& doc, MechanismSpec* spec);
 std::vector<MarkerSpec> ReadMarkers(JsonReader& rd, const json& markers, const std::string& ptr);

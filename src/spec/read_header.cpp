@@ -103,7 +103,7 @@ bool ReadHeader(JsonReader& rd, const json& doc, MechanismSpec* spec) {
   rd.diagnostics().SetPlace(Section::Header);
   if (!rd.CheckObject(doc, "",
                       {"$schema", "mechkin", "name", "description", "units", "parameters", "bodies", "joints",
-                       "drivers", "analysis", "outputs", "expect", "gravity", "loads", "ground", "view"},
+                       "couplers", "drivers", "analysis", "outputs", "expect", "gravity", "loads", "ground", "view"},
                       {"mechkin", "bodies", "joints"}, "the mechanism file"))
     return false;
   rd.String(doc, "$schema", "");  // names the JSON Schema for editors; otherwise ignored

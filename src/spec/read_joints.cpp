@@ -18,10 +18,10 @@ struct JointKeys {
 
 const std::vector<JointKeys>& JointTypes() {
   static const std::vector<JointKeys> kTypes = {
-      {"revolute", {"origin", "axis"}, {}},
-      {"prismatic", {"origin", "axis"}, {}},
-      {"screw", {"origin", "axis", "pitch"}, {}},
-      {"cylindrical", {"origin", "axis"}, {}},
+      {"revolute", {"origin", "axis"}, {"limits"}},
+      {"prismatic", {"origin", "axis"}, {"limits"}},
+      {"screw", {"origin", "axis", "pitch"}, {"limits"}},
+      {"cylindrical", {"origin", "axis"}, {"limits"}},
       {"universal", {"origin", "axis1", "axis2"}, {}},
       {"spherical", {"origin"}, {}},
       {"planar", {"origin", "normal"}, {}},
@@ -53,6 +53,20 @@ void MarkerJointKeys(const JointKeys& info, std::vector<std::string>* allowed, s
   required->insert(required->end(), {"marker1", "marker2"});
   if (std::string(info.name) == "screw") allowed->push_back("pitch"), required->push_back("pitch");
   if (std::string(info.name) == "distance") allowed->push_back("length");
+  if (std::find(info.optional.begin(), info.optional.end(), "limits") != info.optional.end()) allowed->push_back("limits");
+}
+
+// "limits": [lo, hi], two numbers or expressions.
+std::optional<std::array<Scalar, 2>> ReadLimits(JsonReader& rd, const json& jj, const std::string& ptr) {
+  if (!jj.contains("limits")) return std::nullopt;
+  const json& v = jj.at("limits");
+  if (!v.is_array() || v.size() != 2) {
+    rd.Error(ptr + "/limits", "'limits' must be [lo, hi], two numbers, not " + TypeName(v),
+             "e.g. \"limits\": [-30, 45] in the file's angle unit (a slide: its length unit)");
+    return std::nullopt;
+  }
+  return std::array<Scalar, 2>{rd.ScalarValue(v[0], ptr + "/limits/0", "the lower limit"),
+                               rd.ScalarValue(v[1], ptr + "/limits/1", "the upper limit")};
 }
 
 // The keys a driver of `type` takes besides name, description, type, function.
@@ -134,6 +148,7 @@ void ReadJoint(JsonReader& rd, const json& jj, const std::string& ptr, Mechanism
   joint.length = rd.Number(jj, "length", ptr);
   joint.marker1 = rd.String(jj, "marker1", ptr);
   joint.marker2 = rd.String(jj, "marker2", ptr);
+  joint.limits = ReadLimits(rd, jj, ptr);
   if (info && !by_markers)
     joint.geometry_complete = std::all_of(info->geometry.begin(), info->geometry.end(),
                                           [&](const std::string& key) { return jj.contains(key); });

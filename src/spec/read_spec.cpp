@@ -26,6 +26,8 @@ SpecReadResult ReadMechanismSpec(const std::string& text, const std::string& sou
             [&](const json& e, const std::string& p) { spec_reader::ReadBody(rd, e, p, by_markers, &spec); });
   ReadArray(rd, doc, "joints", "joint", Section::Joints,
             [&](const json& e, const std::string& p) { spec_reader::ReadJoint(rd, e, p, &spec); });
+  ReadArray(rd, doc, "couplers", "coupler", Section::Couplers,
+            [&](const json& e, const std::string& p) { spec_reader::ReadCoupler(rd, e, p, &spec); });
   ReadArray(rd, doc, "drivers", "driver", Section::Drivers,
             [&](const json& e, const std::string& p) { spec_reader::ReadDriver(rd, e, p, &spec); });
   spec_reader::ReadAnalysis(rd, doc, &spec);

@@ -111,8 +111,24 @@ struct JointSpec {
   std::optional<Vector3Spec> origin, axis, axis1, axis2, normal, point1, point2;
   std::optional<Scalar> pitch, length;
   std::optional<std::string> marker1, marker2;  // markers of body1 and body2 instead of global geometry
+  // "limits": [lo, hi] of a revolute or screw joint's angle, a prismatic or cylindrical
+  // joint's slide (file units, from the design pose or the markers' coincidence).
+  std::optional<std::array<Scalar, 2>> limits;
   bool geometry_complete = true;     // every required geometry key is present
   std::string pointer;
+};
+
+/// A coupler between joint coordinates ("couplers", docs/format.md): gear, belt,
+/// rack_pinion, screw_coupling (joint1, joint2 and ratio / pitch_radius / pitch) or
+/// coupling (joints, coefficients, constant, optional coordinates).
+struct CouplerSpec {
+  std::optional<std::string> name, type;
+  std::optional<std::string> joint1, joint2;
+  std::vector<std::string> joints, coordinates;  // coupling
+  std::vector<Scalar> coefficients;              // coupling
+  std::optional<Scalar> ratio, pitch_radius, pitch, constant;
+  std::string pointer;
+  bool ok = true;  // false: the reader reported a structural error
 };
 
 /// A function of time: an expression in t or a table of (t, value) rows.
@@ -195,6 +211,7 @@ struct MechanismSpec {
   std::vector<MarkerSpec> ground_markers;  // "ground": {"markers": {...}}, global coordinates
   std::vector<BodySpec> bodies;
   std::vector<JointSpec> joints;
+  std::vector<CouplerSpec> couplers;
   std::vector<DriverSpec> drivers;
   std::optional<AnalysisSpec> analysis;
   std::vector<OutputSpec> outputs;

@@ -10,10 +10,12 @@
 // rotation drivers and screws move on their joint's rotation manifold.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <random>
 
+#include "constraints/couplers.hpp"
 #include "constraints/families.hpp"
 #include "test_jet.hpp"
 
@@ -502,6 +504,267 @@ TEST(Conformance, HarnessCatchesACorruptedSign) {
   });
   EXPECT_GT(e.rhs_w, 1e-3);  // the harness notices
   EXPECT_LT(e.jac, 1e-7);    // and only that
+}
+
+
+// ---- couplers between joint coordinates (§3.11): up to six sides ----------------
+
+// One joint coordinate of a coupler case: body `child` turns on the rotation manifold
+// of `parent` (rotation) or moves freely (slide); -1 is ground.
+struct TermLayout {
+  int parent, child;
+  bool rotation;
+};
+
+struct CouplerCase {
+  std::unique_ptr<Constraint> c;
+  std::vector<BodyTraj> bodies;           // index = BodyIndex
+  std::vector<double> angle_refs;         // per tracked angle
+  std::function<TJet(const std::vector<BodyTraj>&)> phi;  // independent Φ(t)
+};
+
+const BodyTraj& TrajOf(const std::vector<BodyTraj>& bodies, BodyIndex b) {
+  static const BodyTraj ground = Ground();
+  return b == kGround ? ground : bodies[b];
+}
+
+// The coupler's input from per-body kinematics (ground: GroundKinematics).
+ConstraintInput CouplerInput(const Constraint& c, const std::vector<BodyKinematics>& kin, const std::vector<double>& refs) {
+  auto k = [&](int side) -> const BodyKinematics& {
+    return c.body(side) == kGround ? GroundKinematics() : kin[c.body(side)];
+  };
+  ConstraintInput in{k(0), k(1), Jet{}, refs.empty() ? 0.0 : refs[0]};
+  for (int side = 2; side < c.num_sides(); ++side) in.more[side - 2] = &k(side);
+  for (size_t a = 1; a < refs.size(); ++a) in.more_angle_refs[a - 1] = refs[a];
+  return in;
+}
+
+double CouplerPhiAt(const Constraint& c, const std::vector<BodyKinematics>& kin, const std::vector<double>& refs) {
+  double phi;
+  c.CalcPhi(CouplerInput(c, kin, refs), &phi);
+  return phi;
+}
+
+// The layouts: gears on ground, on a carrier, in a chain; racks; a planetary mesh
+// relative to its carrier; mixed three-coordinate couplings.
+const std::vector<std::vector<TermLayout>>& CouplerLayouts() {
+  static const std::vector<std::vector<TermLayout>> kLayouts = {
+      {{-1, 0, true}, {-1, 1, true}},
+      {{0, 1, true}, {0, 2, true}},
+      {{0, 1, true}, {1, 2, true}},
+      {{-1, 0, true}, {1, 2, false}},
+      {{1, 0, true}, {1, 2, false}},
+      {{-1, 0, true}, {-1, 1, true}, {1, 2, true}},
+      {{-1, 0, true}, {0, 1, true}, {2, 3, false}},
+      {{0, 1, false}, {0, 2, true}, {-1, 3, false}},
+  };
+  return kLayouts;
+}
+
+// A coupling whose RHS is halved: what the harness must catch.
+class HalvedRhsCoupling : public CouplingConstraint {
+ public:
+  using CouplingConstraint::CouplingConstraint;
+  void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override {
+    CouplingConstraint::CalcRhs(in, k, rhs);
+    *rhs *= 0.5;
+  }
+};
+
+CouplerCase MakeCoupler(std::mt19937& g, int n, bool broken = false) {
+  const std::vector<TermLayout>& layout = CouplerLayouts()[n % CouplerLayouts().size()];
+  CouplerCase cs;
+  cs.bodies.resize(4);
+  std::vector<bool> built(4, false);
+  std::vector<CoordinateTerm> terms;
+  std::vector<TJet> thetas(layout.size());
+  std::vector<JointFrame> f1(layout.size()), f2(layout.size());
+  std::uniform_real_distribution<double> u(-2, 2);
+  for (int b = 0; b < 4; ++b) cs.bodies[b] = RandomBody(g, (n + b) % 3);
+  for (size_t k = 0; k < layout.size(); ++k) {
+    const TermLayout& L = layout[k];
+    Vec4 q0;
+    RandomFrames(g, &f1[k], &f2[k], &q0);
+    if (L.rotation) {
+      thetas[k] = RandomPoly(g, std::uniform_real_distribution<double>(-30, 30)(g), 2.0);
+      cs.bodies[L.child] = OnRotationManifold(g, TrajOf(cs.bodies, L.parent), f1[k].h, thetas[k], q0);
+      cs.angle_refs.push_back(thetas[k].c[0] + (k % 2 ? 0.4 : -0.4));
+    }
+    terms.push_back(CoordinateTerm{L.rotation, L.parent < 0 ? kGround : L.parent, L.child, f1[k], f2[k], u(g)});
+  }
+  const double c0 = u(g);
+  if (broken) cs.c = std::make_unique<HalvedRhsCoupling>(terms, c0);
+  else cs.c = std::make_unique<CouplingConstraint>(terms, c0);
+  cs.phi = [layout, terms, thetas, c0](const std::vector<BodyTraj>& b) {
+    TJet sum(-c0);
+    for (size_t k = 0; k < terms.size(); ++k) {
+      if (layout[k].rotation) {
+        sum = sum + terms[k].coefficient * thetas[k];
+        continue;
+      }
+      const BodyTraj &a = TrajOf(b, terms[k].body1), &c = TrajOf(b, terms[k].body2);
+      const V3 d = testing::Sub(PointOf(c, terms[k].frame2.origin), PointOf(a, terms[k].frame1.origin));
+      sum = sum + terms[k].coefficient * testing::Dot(VecOf(a, terms[k].frame1.h), d);
+    }
+    return sum;
+  };
+  return cs;
+}
+
+// Φ, Φ_q (both versions) and κ against differences, RHS_k against the jets, per side.
+Errors CheckCouplerCase(const CouplerCase& cs) {
+  Errors e;
+  const Constraint& c = *cs.c;
+  std::vector<BodyKinematics> kin;
+  for (const BodyTraj& b : cs.bodies) kin.push_back(KinAt0(b));
+  const ConstraintInput in = CouplerInput(c, kin, cs.angle_refs);
+  const TJet phi_t = cs.phi(cs.bodies);
+  double phi;
+  c.CalcPhi(in, &phi);
+  e.phi = RelErr(phi, phi_t.c[0], 1 + std::abs(phi_t.c[0]));
+  std::vector<ExtendedPose> xp;
+  for (const BodyKinematics& k : kin) xp.push_back(ExtendedPose::Of(k));
+  static const ExtendedPose kGroundPose;
+  auto xs = [&](int side) -> const ExtendedPose& { return c.body(side) == kGround ? kGroundPose : xp[c.body(side)]; };
+  ExtendedInput xin{xs(0), xs(1), 0, in.angle_ref};
+  for (int side = 2; side < c.num_sides(); ++side) xin.more[side - 2] = &xs(side);
+  xin.more_angle_refs = in.more_angle_refs;
+  Real phi_x;
+  c.CalcPhiExtended(xin, &phi_x);
+  e.phi_extended = RelErr(static_cast<double>(phi_x), phi_t.c[0], 1 + std::abs(phi_t.c[0]));
+  JacobianBlocks J;
+  c.CalcJacobian(in, &J);
+  const double h = 1e-6;
+  double jscale = 1e-12;
+  for (int side = 0; side < c.num_sides(); ++side) jscale = std::max({jscale, J.R(side).row(0).norm(), J.Pi(side).row(0).norm()});
+  for (int side = 0; side < c.num_sides(); ++side) {
+    const BodyIndex b = c.body(side);
+    if (b == kGround) continue;
+    const auto P = PVersionBlock(in, J, side);
+    for (int col = 0; col < 10; ++col) {
+      double f[2];
+      for (int sgn : {1, -1}) {
+        std::vector<BodyKinematics> kp = kin;
+        if (col < 3) kp[b].r[0][col] += sgn * h;
+        else if (col < 6) kp[b].SetPose(kp[b].r[0], QuatMultiply(kp[b].p, QuatFromAxisAngle(Vec3::Unit(col % 3), sgn * h)));
+        else {
+          Vec4 p = kp[b].p;
+          p[col - 6] += sgn * h;
+          kp[b].SetPose(kp[b].r[0], p.normalized());
+        }
+        f[sgn > 0 ? 0 : 1] = CouplerPhiAt(c, kp, cs.angle_refs);
+      }
+      const double fd = (f[0] - f[1]) / (2 * h);
+      if (col < 6) e.jac = std::max(e.jac, RelErr(fd, col < 3 ? J.R(side)(0, col) : J.Pi(side)(0, col - 3), jscale));
+      else e.jac_p = std::max(e.jac_p, RelErr(fd, P(0, col - 6), jscale));
+    }
+  }
+  for (int k = 1; k <= 4; ++k) {
+    double rw, rp;
+    c.CalcRhs(in, k, &rw);
+    CalcPVersionRhs(c, in, k, &rp);
+    double lhs_w = 0, lhs_p = 0, scale = std::abs(phi_t.D(k));
+    for (int side = 0; side < c.num_sides(); ++side) {
+      if (c.body(side) == kGround) continue;
+      const BodyTraj& b = cs.bodies[c.body(side)];
+      const auto P = PVersionBlock(in, J, side);
+      for (int a = 0; a < 3; ++a) {
+        const double tr = J.R(side)(0, a) * b.r[a].D(k), tw = J.Pi(side)(0, a) * b.w[a].D(k - 1);
+        lhs_w += tr + tw;
+        lhs_p += tr;
+        scale = std::max({scale, std::abs(tr), std::abs(tw)});
+      }
+      for (int a = 0; a < 4; ++a) lhs_p += P(0, a) * b.p[a].D(k), scale = std::max(scale, std::abs(P(0, a) * b.p[a].D(k)));
+    }
+    const double want_w = lhs_w - phi_t.D(k), want_p = lhs_p - phi_t.D(k);
+    e.rhs_w = std::max(e.rhs_w, RelErr(rw, want_w, std::max(scale, std::abs(want_w))));
+    e.rhs_p = std::max(e.rhs_p, RelErr(rp, want_p, std::max(scale, std::abs(want_p))));
+  }
+  // κ vs 4th-order central differences in time of Φ_qᵀλ, side by side.
+  const double lambda = 0.7, dt = 1e-3;
+  KappaTerms kap;
+  c.CalcKappa(in, &lambda, &kap);
+  const double w5[4] = {1, -8, 8, -1}, t5[4] = {-2, -1, 1, 2};
+  Eigen::VectorXd fd = Eigen::VectorXd::Zero(6 * c.num_sides()), got = fd;
+  for (int s = 0; s < 4; ++s) {
+    std::vector<BodyKinematics> ks;
+    for (const BodyTraj& b : cs.bodies) ks.push_back(KinAt(b, t5[s] * dt));
+    JacobianBlocks Js;
+    c.CalcJacobian(CouplerInput(c, ks, cs.angle_refs), &Js);
+    for (int side = 0; side < c.num_sides(); ++side) {
+      fd.segment<3>(6 * side) += w5[s] * lambda * Js.R(side).row(0).transpose();
+      fd.segment<3>(6 * side + 3) += w5[s] * lambda * Js.Pi(side).row(0).transpose();
+    }
+  }
+  fd /= 12 * dt;
+  for (int side = 0; side < c.num_sides(); ++side) {
+    if (c.body(side) == kGround) {
+      fd.segment<6>(6 * side).setZero();
+      continue;
+    }
+    got.segment<3>(6 * side) = kap.F(side);
+    got.segment<3>(6 * side + 3) = kap.T(side);
+  }
+  e.kappa = (fd - got).norm() / std::max({fd.norm(), got.norm(), jscale * 1e-3});
+  return e;
+}
+
+// Every layout, 1000 poses: the general coupling (gear, belt, rack, screw coupling
+// are its two-coordinate instances, checked below against it).
+TEST(Conformance, CouplerBetweenJointCoordinates) {
+  std::mt19937 g(20261202);
+  Errors worst;
+  for (int n = 0; n < kPoses; ++n) worst.Max(CheckCouplerCase(MakeCoupler(g, n)));
+  std::printf("[measured] couplers: phi %.1e ext %.1e jac %.1e jac_p %.1e rhs_w %.1e rhs_p %.1e kappa %.1e\n", worst.phi,
+              worst.phi_extended, worst.jac, worst.jac_p, worst.rhs_w, worst.rhs_p, worst.kappa);
+  ExpectConforms(worst);
+}
+
+// The named couplers are the coupling with their coefficients: Φ, Φ_q and RHS equal.
+TEST(Conformance, NamedCouplersAreTheirCoupling) {
+  std::mt19937 g(8);
+  for (int n = 0; n < 200; ++n) {
+    JointFrame a1, a2, b1, b2;
+    Vec4 q0;
+    RandomFrames(g, &a1, &a2, &q0);
+    RandomFrames(g, &b1, &b2, &q0);
+    const CoordinateTerm rot{true, kGround, 0, a1, a2, 1}, rot2{true, kGround, 1, b1, b2, 1};
+    const CoordinateTerm slide{false, kGround, 1, b1, b2, 1};
+    const double r = std::uniform_real_distribution<double>(-3, 3)(g);
+    std::vector<BodyKinematics> kin(2);
+    kin[0] = KinAt0(RandomBody(g, 0));
+    kin[1] = KinAt0(RandomBody(g, 1));
+    const std::vector<double> refs = {0.3, -0.2};
+    auto same = [&](const Constraint& named, const Constraint& general, const std::vector<double>& rf) {
+      const ConstraintInput in = CouplerInput(named, kin, rf), ig = CouplerInput(general, kin, rf);
+      EXPECT_NEAR(CouplerPhiAt(named, kin, rf), CouplerPhiAt(general, kin, rf), 1e-13);
+      JacobianBlocks Jn, Jg;
+      named.CalcJacobian(in, &Jn);
+      general.CalcJacobian(ig, &Jg);
+      for (int side = 0; side < named.num_sides(); ++side)
+        EXPECT_LT((Jn.Pi(side) - Jg.Pi(side)).norm() + (Jn.R(side) - Jg.R(side)).norm(), 1e-13);
+      for (int k = 1; k <= 4; ++k) {
+        double a, b;
+        named.CalcRhs(in, k, &a);
+        general.CalcRhs(ig, k, &b);
+        EXPECT_NEAR(a, b, 1e-13 * (1 + std::abs(a)));
+      }
+    };
+    auto with = [](CoordinateTerm t, double c) { t.coefficient = c; return t; };
+    same(GearConstraint(rot, rot2, r), CouplingConstraint({with(rot, -r), rot2}, 0), refs);
+    same(BeltConstraint(rot, rot2, r), CouplingConstraint({with(rot, -r), rot2}, 0), refs);
+    same(RackPinionConstraint(rot, slide, r), CouplingConstraint({with(rot, -r), slide}, 0), {0.3});
+    same(ScrewCouplingConstraint(rot, slide, r), CouplingConstraint({with(rot, -r / (2 * M_PI)), slide}, 0), {0.3});
+  }
+}
+
+// The harness sees a coupler whose right-hand sides lose half of the slide's bias.
+TEST(Conformance, CouplerHarnessCatchesAWrongRhs) {
+  std::mt19937 g(4);
+  Errors worst;
+  for (int n = 0; n < 50; ++n) worst.Max(CheckCouplerCase(MakeCoupler(g, 3, /*broken=*/true)));
+  EXPECT_GT(worst.rhs_w, 1e-3);
+  EXPECT_LT(worst.jac, 1e-7);
 }
 
 TEST(Conformance, EulerNormalizationRhs) {

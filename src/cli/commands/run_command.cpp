@@ -35,6 +35,10 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
   cmd->add_flag("--keep-partial", o->keep_partial,
                 "On Ctrl-C (SIGINT) write the rows computed so far as a partial table instead of nothing");
   cmd->add_flag("--si", o->request.si, "Write SI units (m, rad) instead of the file's units");
+  cmd->add_option("--on-limit", o->on_limit,
+                  "At a joint's limits (\"limits\" in the file): stop (default; the crossing located) or report "
+                  "(note it on stderr and go on)")
+      ->check(CLI::IsMember({"stop", "report"}));
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_flag("--quiet", o->quiet,
                 "No notes on stderr: redundant equations set aside, undetermined reactions, singular passages "
@@ -57,6 +61,7 @@ RunRequest RunOptions::Request() const {
   if (outputs_given) r.outputs = outputs;
   r.forces = no_forces ? ForcesChoice::Off : forces ? ForcesChoice::On : ForcesChoice::Auto;
   r.sensitivity = sensitivity;
+  r.on_limit_report = on_limit == "report";
   r.keep_step_diagnostics = false;  // streamed: the table's diagnostic columns carry them
   return r;
 }

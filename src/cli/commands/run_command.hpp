@@ -26,6 +26,7 @@ struct RunOptions {
   bool bodies_given = false, outputs_given = false;
   std::vector<std::string> set;          // --set NAME=VALUE: parameter overrides
   std::vector<std::string> sensitivity;  // --sensitivity: parameters to differentiate by
+  std::string on_limit = "stop";         // --on-limit stop|report: at a joint's limits
   /// The whole request: `request` with the selections, forces and sensitivities.
   RunRequest Request() const;
 };

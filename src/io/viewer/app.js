@@ -130,6 +130,16 @@
     scene.add(rod);
     return { j: j, rod: rod };
   });
+  // Couplers: a dashed line through the origins of the joints each one ties, set each frame.
+  const couplerMat = new THREE.LineDashedMaterial({ color: 0xb35900, dashSize: thick * 3, gapSize: thick * 2 });
+  const couplers = (D.couplers || []).map(function (c) {
+    const geo = new THREE.BufferGeometry();
+    geo.setAttribute("position", new THREE.BufferAttribute(new Float32Array(3 * c.joints.length), 3));
+    const line = new THREE.Line(geo, couplerMat);
+    line.userData.label = c.name + " (" + c.type + ")";
+    scene.add(line);
+    return { c: c, line: line };
+  });
   scene.add(new THREE.AxesHelper(L * 0.3));
   // The floor: a grid across the up axis, under the whole motion's box.
   const boxCenter = new THREE.Vector3().addVectors(boxLo, boxHi).multiplyScalar(0.5);
@@ -182,6 +192,17 @@
       l.rod.position.copy(a).add(b).multiplyScalar(0.5);
       l.rod.scale.set(1, Math.max(len, 1e-9), 1);
       if (len > 0) l.rod.quaternion.setFromUnitVectors(yAxis, d.divideScalar(len));
+    });
+    couplers.forEach(function (cl) {
+      const attr = cl.line.geometry.attributes.position, p = new THREE.Vector3();
+      cl.c.joints.forEach(function (k, i) {
+        const j = D.joints[k];
+        globalPoint(j.body1, j.origin, p);
+        attr.setXYZ(i, p.x, p.y, p.z);
+      });
+      attr.needsUpdate = true;
+      cl.line.geometry.computeBoundingSphere();
+      cl.line.computeLineDistances();
     });
     slider.value = String(Math.round(1000 * (current - T[0]) / Math.max(T[n - 1] - T[0], 1e-300)));
     clock.textContent = "t = " + current.toPrecision(6) + " s";

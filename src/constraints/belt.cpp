@@ -1,0 +1,19 @@
+// §3.11 belt or chain drive: θ₂ − r θ₁ = 0 like a gear (c = (−r, 1), c_0 = 0), the
+// sense of r from the belt's arrangement: r = d₁/d₂ open, −d₁/d₂ crossed.
+#include "constraints/couplers.hpp"
+
+namespace mechkin {
+
+namespace {
+
+CoordinateTerm Scaled(CoordinateTerm t, double c) {
+  t.coefficient = c;
+  return t;
+}
+
+}  // namespace
+
+BeltConstraint::BeltConstraint(const CoordinateTerm& joint1, const CoordinateTerm& joint2, double ratio)
+    : CouplerConstraint({Scaled(joint1, -ratio), Scaled(joint2, 1)}, 0) {}
+
+}  // namespace mechkin
