@@ -333,7 +333,7 @@ static std::string DescribeReach(const Model& model, const std::vector<double>& 
 }
 
 bool ContinueToStart(KinematicsWorkspace& ws, double start, const SolveOptions& solve, SystemState* s,
-                     int* iterations, std::string* message) {
+                     int* iterations, std::string* message, const std::function<void(const SystemState&)>& on_pose) {
   const ConstraintSystem& sys = ws.system();
   const Model& model = sys.model();
   EvalDriverFunctions(model, start, s);
@@ -369,6 +369,7 @@ bool ContinueToStart(KinematicsWorkspace& ws, double start, const SolveOptions& 
       return false;
     }
     UpdateAngleReferences(sys, s);
+    if (on_pose) on_pose(*s);
   }
   return true;
 }

@@ -4,6 +4,7 @@
 // is the one followed.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,11 @@ bool AssembleHintedBranch(const ConstraintSystem& sys, const SolveOptions& solve
 /// coordinate of that joint differs). True without flips.
 bool AssembleFlippedBranch(const ConstraintSystem& sys, const SolveOptions& solve, SystemState* s, int* iterations,
                            std::string* message);
+/// Follows the drivers from the design pose to their values at t = start in small
+/// increments; `on_pose` (if set) sees every pose reached on the way, so outputs that
+/// keep their turn (joint angles) continue across the move.
 bool ContinueToStart(KinematicsWorkspace& ws, double start, const SolveOptions& solve, SystemState* s,
-                     int* iterations, std::string* message);
+                     int* iterations, std::string* message,
+                     const std::function<void(const SystemState&)>& on_pose = {});
 
 }  // namespace mechkin

@@ -135,6 +135,7 @@ class Stepper {
     solve_.tolerance = options.tolerance;
     solve_.max_iterations = options.max_iterations;
     predictor_ = std::min(options.predictor_order, options.order);
+    CheckSetAsideOnSolvedBodies();
   }
   /// Runs every row; fills the report's stop reason when it ends early.
   void Run(const StepCallback& on_step, AnalysisReport* rep);
@@ -145,6 +146,7 @@ class Stepper {
   Outcome Refine(double t, StepDiagnostics* diag, double* bad_t);
   bool SetAsideCloses();
   double UpdateSetAsideResidual();
+  void CheckSetAsideOnSolvedBodies();
   void FinishDiagnostics(StepDiagnostics* diag);
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
   bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
@@ -169,6 +171,8 @@ class Stepper {
   double prev_sign_ = 0;
   double last_condition_ = 1;  // the previous row's condition estimate
   double set_aside_residual_ = 0;  // at s_, by UpdateSetAsideResidual
+  std::vector<int> checked_set_aside_;  // the set-aside rows whose bodies the solves move
+  Eigen::VectorXd checked_set_aside_scales_;
   double regular_condition_ = std::numeric_limits<double>::infinity();  // the smallest along the run
   double reselect_above_ = kReselectCondition;  // condition that triggers the next search
   bool have_sign_ = false;
@@ -233,10 +237,17 @@ bool Stepper::SetAsideCloses() {
 // diagnostics: every accepted pose passed Attempt, which computed it there.
 double Stepper::UpdateSetAsideResidual() {
   set_aside_residual_ = 0;
-  if (selection_.set_aside.empty()) return 0;
+  if (checked_set_aside_.empty()) return 0;
   CalcPhi(ws_->system(), s_, &phi_);
-  set_aside_residual_ = ScaledResidual(phi_, selection_.set_aside, selection_.set_aside_scales);
+  set_aside_residual_ = ScaledResidual(phi_, checked_set_aside_, checked_set_aside_scales_);
   return set_aside_residual_;
+}
+
+// A table that reads some bodies only solves the blocks they need (workspace.hpp);
+// a set-aside equation on a body left at its design pose says nothing of the motion.
+void Stepper::CheckSetAsideOnSolvedBodies() {
+  checked_set_aside_ = RowsOnSolvedBodies(*ws_, selection_.set_aside);
+  checked_set_aside_scales_ = RowScales(ws_->system(), checked_set_aside_);
 }
 
 // Adaptive sub-stepping between two table rows: halve until every sub-step is
@@ -292,6 +303,7 @@ bool Stepper::Reselect(const SystemState& at, double min_gain, AnalysisReport* r
     return false;
   selection_ = std::move(next);
   ws_ = std::make_unique<KinematicsWorkspace>(sys, selection_.active, WorkspaceOptionsOf(options_));
+  CheckSetAsideOnSolvedBodies();
   if (options_.forces) forces_ = std::make_unique<ForceSolver>(sys, selection_, options_.order);
   have_sign_ = false;  // det Φ_q of other rows: its sign starts afresh
   rep->reselections.push_back({at.t, selection_.set_aside_names});
@@ -521,7 +533,8 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
 // The run as a sequence of named steps: assemble the design pose, select the
 // independent equations, refuse mechanisms that are not fully driven, continue
 // the drivers to `start`, then step through time.
-AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& options, const StepCallback& on_step) {
+AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& options, const StepCallback& on_step,
+                                    const PoseCallback& on_assembly) {
   AnalysisReport rep;
   rep.stop = StopKind::Refused;
   if (!options.IsValid(&rep.message)) return rep;
@@ -556,7 +569,9 @@ AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& o
     rep.blocks = ws->blocks();
     rep.blocks_solved = ws->blocks_solved();
     rep.stop = StopKind::AssemblyFailed;
-    if (!ContinueToStart(*ws, model.analysis->start, solve, &s, &rep.assembly_iterations, &rep.message)) return rep;
+    if (on_assembly) on_assembly(s);
+    if (!ContinueToStart(*ws, model.analysis->start, solve, &s, &rep.assembly_iterations, &rep.message, on_assembly))
+      return rep;
     rep.stop = StopKind::None;
     Stepper(std::move(ws), options, selection, std::move(s), std::move(sensitivity)).Run(on_step, &rep);
   } catch (const std::exception& e) {

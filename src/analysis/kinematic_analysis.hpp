@@ -113,6 +113,10 @@ using StepCallback = std::function<bool(const SystemState&, const StepDiagnostic
 
 /// Runs the analysis of model.analysis. Never throws for a mechanism that cannot
 /// move as asked: the report says why and where it stopped.
-AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& options, const StepCallback& on_step);
+/// `on_assembly` (if set) sees the assembled design pose and every pose of the move
+/// to the start (no rows: RowEvaluator::Follow keeps angles' turns across it).
+using PoseCallback = std::function<void(const SystemState&)>;
+AnalysisReport RunKinematicAnalysis(const Model& model, const AnalysisOptions& options, const StepCallback& on_step,
+                                    const PoseCallback& on_assembly = {});
 
 }  // namespace mechkin

@@ -343,6 +343,28 @@ void RowEvaluator::Evaluate(const SystemState& s, const StepDiagnostics& d, doub
   first_row_ = false;
 }
 
+// The poses of the move carry no rates worth extrapolating: after each one the
+// references are its angles and the rates zero, so the first row unwraps nearest
+// the pose the move ended on (the same pose, solved at t = start).
+void RowEvaluator::Follow(const SystemState& s) {
+  follow_row_.resize(layout_.size());
+  double* out = follow_row_.data();
+  for (const auto& it : layout_.items())
+    if (!it.is_body) out = OutputValues(s, it.index, out);
+  std::fill(angle_rate_.begin(), angle_rate_.end(), 0.0);
+  for (auto& r : orientation_rate_) r = {0, 0, 0};
+  last_t_ = s.t;
+  first_row_ = false;
+}
+
+void RowEvaluator::ContinueFrom(const RowEvaluator& base) {
+  angle_ref_ = base.angle_ref_;
+  orientation_ref_ = base.orientation_ref_;
+  std::fill(angle_rate_.begin(), angle_rate_.end(), 0.0);
+  for (auto& r : orientation_rate_) r = {0, 0, 0};
+  first_row_ = false;
+}
+
 // d(column)/dp = [column(model₊, s₊) − column(model₋, s₋)] / 2h (analysis/sensitivity.hpp):
 // each side evaluated by its own RowEvaluator, so angles stay continuous on both.
 void RowEvaluator::SensitivityValues(const StepDiagnostics& d, double* row) {
@@ -361,6 +383,7 @@ void RowEvaluator::SensitivityValues(const StepDiagnostics& d, double* row) {
         PerturbedRows pr;
         pr.layout = std::make_unique<MotionLayout>(sens->model(p, sign), side_options);
         pr.eval = std::make_unique<RowEvaluator>(sens->model(p, sign), *pr.layout);
+        pr.eval->ContinueFrom(*this);
         pr.row.resize(pr.layout->size());
         for (const auto& c : cols)
           if (c.wrt == p) pr.column.push_back(pr.layout->Find(cols[c.base].name));
@@ -707,10 +730,13 @@ AnalysisReport RunIntoSink(const Model& model, const AnalysisOptions& options, c
                            RowSink* sink) {
   RowEvaluator eval(model, layout);
   std::vector<double> row(layout.size());
-  return RunKinematicAnalysis(model, options, [&](const SystemState& s, const StepDiagnostics& d) {
-    eval.Evaluate(s, d, row.data());
-    return sink->Append(row.data(), layout.size());
-  });
+  return RunKinematicAnalysis(
+      model, options,
+      [&](const SystemState& s, const StepDiagnostics& d) {
+        eval.Evaluate(s, d, row.data());
+        return sink->Append(row.data(), layout.size());
+      },
+      [&](const SystemState& s) { eval.Follow(s); });
 }
 
 // The table decides what the solver computes, through the run request's policy.

@@ -123,6 +123,12 @@ class RowEvaluator {
   RowEvaluator(const Model& model, const MotionLayout& layout);
   /// Writes layout.size() values into `row`.
   void Evaluate(const SystemState& s, const StepDiagnostics& d, double* row);
+  /// Follows a pose that makes no row (the assembly and the move to the start):
+  /// angles keep their turn from the design pose across it.
+  void Follow(const SystemState& s);
+  /// Takes another evaluator's angle references (same outputs): the sides of a
+  /// sensitivity unwrap nearest the base row instead of nearest 0.
+  void ContinueFrom(const RowEvaluator& base);
 
  private:
   double* BodyValues(const BodyKinematics& b, double* out) const;
@@ -158,6 +164,7 @@ class RowEvaluator {
   std::vector<std::array<double, 3>> orientation_rate_;
   double last_t_ = 0;
   bool first_row_ = true;
+  std::vector<double> follow_row_;  // scratch for Follow (outside the step loop)
 };
 
 struct MotionStop {

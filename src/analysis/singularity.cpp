@@ -104,12 +104,14 @@ SingularPosition LocateSingularity(KinematicsWorkspace& ws, const SystemState& b
 
 namespace {
 
-// Every equation, the set-aside ones included, closes at s to `tolerance` (scaled).
-bool ClosesAllRows(const ConstraintSystem& sys, const SystemState& s, double tolerance) {
+// Every equation the workspace's solves reach, the set-aside ones included, closes at
+// s to `tolerance` (scaled).
+bool ClosesAllRows(const KinematicsWorkspace& ws, const SystemState& s, double tolerance) {
+  const ConstraintSystem& sys = ws.system();
   Eigen::VectorXd phi;
   CalcPhi(sys, s, &phi);
-  const std::vector<int> all = AllRows(sys);
-  return ScaledResidual(phi, all, RowScales(sys, all)) <= tolerance;
+  const std::vector<int> rows = RowsOnSolvedBodies(ws, AllRows(sys));
+  return ScaledResidual(phi, rows, RowScales(sys, rows)) <= tolerance;
 }
 
 // A tight solve from the Taylor prediction off `base` at time t (the run's branch).
@@ -119,7 +121,7 @@ bool ProbeFrom(KinematicsWorkspace& ws, const SystemState& base, double t, int p
   // The equations set aside as redundant must close too: past the fold of a redundant
   // mechanism (Bricard's) the solved rows alone still close, on a curve that crosses
   // the mechanism's there and misses the set-aside ones in proportion to the overshoot.
-  return ClosesAllRows(ws.system(), *probe, 100 * kTolerance);
+  return ClosesAllRows(ws, *probe, 100 * kTolerance);
 }
 
 // The pose as one vector (r and p of every body) for the fold fit.

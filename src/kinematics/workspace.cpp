@@ -38,6 +38,22 @@ void KinematicsWorkspace::SetUpBlockPath(const BlockStructure& structure) {
   if (count == structure.size()) return;
   block_solver_ = std::make_unique<BlockSolver>(sys_, active_, structure, needed);
   blocks_solved_ = count;
+  skipped_body_.assign(sys_.num_bodies(), 0);
+  for (int b = 0; b < structure.size(); ++b)
+    if (!needed[b])
+      for (int c : structure.cols[b]) skipped_body_[c / 6] = 1;
+}
+
+std::vector<int> RowsOnSolvedBodies(const KinematicsWorkspace& ws, const std::vector<int>& rows) {
+  const ConstraintSystem& sys = ws.system();
+  std::vector<int> kept;
+  for (int row : rows) {
+    const Constraint& c = *sys.entries()[sys.Locate(row).first].constraint;
+    bool solved = true;
+    for (int side = 0; side < c.num_sides(); ++side) solved = solved && (c.body(side) == kGround || ws.SolvesBody(c.body(side)));
+    if (solved) kept.push_back(row);
+  }
+  return kept;
 }
 
 SolveSummary SolvePosition(KinematicsWorkspace& ws, const SolveOptions& options, SystemState* s, bool reuse) {

@@ -42,6 +42,9 @@ class KinematicsWorkspace {
   BlockSolver* block_solver() { return block_solver_.get(); }
   int blocks() const { return blocks_; }
   int blocks_solved() const { return blocks_solved_; }
+  /// Whether the solves move body `b` (false only for bodies of blocks the block
+  /// path skips: their poses stay at the design and their equations go unchecked).
+  bool SolvesBody(int b) const { return skipped_body_.empty() || !skipped_body_[b]; }
 
  private:
   friend void SolveDerivatives(KinematicsWorkspace& ws, int order, SystemState* s);
@@ -56,11 +59,15 @@ class KinematicsWorkspace {
   NewtonSolver newton_;
   std::unique_ptr<BlockSolver> block_solver_;
   int blocks_ = 0, blocks_solved_ = 0;
+  std::vector<char> skipped_body_;  // per body, on the block path only
   std::unique_ptr<SparseJacobian> jac_p_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_p_;
   Eigen::VectorXd rhs_full_, rhs_, x_;
   std::vector<std::array<Vec4, kMaxOrder + 1>> pd_;  // p version: Euler parameter derivatives per body
 };
+
+/// Those of `rows` whose bodies the workspace's solves move (KinematicsWorkspace::SolvesBody).
+std::vector<int> RowsOnSolvedBodies(const KinematicsWorkspace& ws, const std::vector<int>& rows);
 
 /// Φ(q, t) = 0 from the state's current pose (driver values evaluated at t), then
 /// factorizes Φ_q at the solution. `reuse`: modified Newton with the held factors.

@@ -248,7 +248,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
     watch.Row(d);
     if (o.stats) steps.push_back(d);
     return rows_out.Append(row.data(), layout->size()) && !InterruptRequested();
-  });
+  }, [&](const SystemState& s) { eval.Follow(s); });
   const bool rows_written = rows_out.Drain();
   progress.Clear();
   PrintNotes(o, model, rep, watch, err);
