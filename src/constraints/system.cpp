@@ -184,8 +184,12 @@ ConstraintInput MakeInput(const ConstraintSystem& sys, const SystemState& s, siz
   const Constraint& c = *entry.constraint;
   ConstraintInput in{s.Kin(c.body_i()), s.Kin(c.body_j()), entry.from_driver ? s.driver_values[entry.source] : Jet{},
                      s.angle_ref[e]};
+  // Only couplers have more sides or angles (§3.11): the joint and driver entries of
+  // the step loop skip the virtual NumAngles() (checked: spatial slider-crank step).
+  if (!entry.from_coupler) return in;
   for (int side = 2; side < c.num_sides(); ++side) in.more[side - 2] = &s.Kin(c.body(side));
-  for (int a = 1; a < c.NumAngles(); ++a) in.more_angle_refs[a - 1] = s.angle_ref[entry.extra_angle_slot + a - 1];
+  if (entry.extra_angle_slot >= 0)
+    for (int a = 1; a < c.NumAngles(); ++a) in.more_angle_refs[a - 1] = s.angle_ref[entry.extra_angle_slot + a - 1];
   return in;
 }
 
@@ -215,7 +219,8 @@ void CalcPhiExtended(const ConstraintSystem& sys, const std::vector<ExtendedPose
     ExtendedInput in{pose(c.body_i()), pose(c.body_j()),
                      entries[e].from_driver ? driver_values[entries[e].source] : Real(0), angle_ref[e]};
     for (int side = 2; side < c.num_sides(); ++side) in.more[side - 2] = &pose(c.body(side));
-    for (int a = 1; a < c.NumAngles(); ++a) in.more_angle_refs[a - 1] = angle_ref[entries[e].extra_angle_slot + a - 1];
+    if (entries[e].extra_angle_slot >= 0)
+      for (int a = 1; a < c.NumAngles(); ++a) in.more_angle_refs[a - 1] = angle_ref[entries[e].extra_angle_slot + a - 1];
     c.CalcPhiExtended(in, phi->data() + entries[e].first_row);
   }
 }
