@@ -541,7 +541,8 @@ def geared_crank():
     write("geared-slider-crank", {
         "mechkin": 1, "name": "slider-crank driven through a gear pair",
         "description": "A motor pinion (16 teeth) meshes with the crank gear (64 teeth), ratio -1/4; crank 50 mm, "
-                       "connecting rod 150 mm (a distance link), slider on the x axis. The motor turns 4 rev/s.",
+                       "connecting rod 150 mm (a distance link), slider on the x axis. The motor turns 4 rev/s. Module 2 mm "
+                       "(pitch radii 16 and 64 mm, 20 degree pressure angle): the bearings' reactions carry the tooth force.",
         "units": {"length": "mm", "angle": "deg"},
         "bodies": [{"name": "motor", "position": [-80.0, 0.0, 0.0]}, {"name": "crank", "position": [0.0, 0.0, 0.0]},
                    {"name": "slider", "position": r(W)}],
@@ -550,7 +551,9 @@ def geared_crank():
                    {"name": "rod", "type": "distance", "body1": "crank", "body2": "slider", "point1": r(B), "point2": r(W)},
                    {"name": "guide", "type": "prismatic", "body1": "ground", "body2": "slider", "origin": r(W),
                     "axis": [1, 0, 0]}],
-        "couplers": [{"name": "mesh", "type": "gear", "joint1": "motor_bearing", "joint2": "crank_bearing", "ratio": -0.25}],
+        # Module 2 mm: pitch radii 16 and 64 mm on centres 80 mm apart; the bearings carry the tooth force.
+        "couplers": [{"name": "mesh", "type": "gear", "joint1": "motor_bearing", "joint2": "crank_bearing", "ratio": -0.25,
+                      "pitch_radius": 16.0, "pressure_angle": 20.0}],
         "drivers": [{"name": "motor", "type": "rotation", "joint": "motor_bearing", "function": "1440*t"}],
         "analysis": {"start": 0, "end": 1, "steps": 360},
         "outputs": [{"name": "crank_angle", "type": "joint", "joint": "crank_bearing"},

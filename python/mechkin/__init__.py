@@ -198,7 +198,8 @@ class Model:
         return ToleranceReport(data, text)
 
     def run(self, order=3, tol=1e-10, solver="newton", formulation="omega", bodies=None, outputs=None,
-            si=False, start=None, end=None, steps=None, forces=None, sensitivity=None, request=None):
+            si=False, start=None, end=None, steps=None, forces=None, sensitivity=None, on_limit="stop",
+            request=None):
         """The driven kinematic analysis, like `mechkin run`. Returns a Motion; a run
         that stops early returns the rows computed with motion.complete False and
         motion.stop saying why.
@@ -207,14 +208,16 @@ class Model:
         order 0..4 shown, tol in [1e-15, 1e-3], solver, formulation, bodies/outputs
         (None: all), si, forces (None: when the file has inertia or loads; solved with
         accelerations whatever the order shown, their rates with order >= 3),
-        sensitivity (parameter names: d(column)/d(parameter) columns). Out-of-range
-        values raise ValueError with the CLI's message. start, end, steps replace the
-        file's analysis span."""
+        sensitivity (parameter names: d(column)/d(parameter) columns), on_limit
+        ('stop': a joint reaching its limits ends the run there, motion.stop.kind
+        'joint_limit' naming the joint; 'report': noted in motion.notes and the run
+        goes on; `run --on-limit`). Out-of-range values raise ValueError with the
+        CLI's message. start, end, steps replace the file's analysis span."""
         if request is None:
             norm = lambda sel: None if sel is None else ([sel] if isinstance(sel, str) else list(sel))
             request = RunRequest(order=int(order), tol=float(tol), solver=solver, formulation=formulation,
                                  bodies=norm(bodies), outputs=norm(outputs), si=bool(si), forces=forces,
-                                 sensitivity=norm(sensitivity) or [])
+                                 sensitivity=norm(sensitivity) or [], on_limit=on_limit)
         core = self._core.run(request, start, end, steps)
         return Motion(self, core, dict(order=request.order, si=request.si, bodies=request.bodies,
                                        outputs=request.outputs, forces=core.forces,

@@ -124,9 +124,12 @@ class Mechanism:
         self._couplers.append(coupler)
         return name
 
-    def add_gear(self, name, joint1, joint2, ratio):
-        """A gear pair: θ(joint2) = ratio · θ(joint1) (negative for an external mesh)."""
-        return self.add_coupler(name, "gear", joint1=joint1, joint2=joint2, ratio=ratio)
+    def add_gear(self, name, joint1, joint2, ratio, pitch_radius=None, pressure_angle=None):
+        """A gear pair: θ(joint2) = ratio · θ(joint1) (negative for an external mesh).
+        With pitch_radius (joint1's gear, length unit) and optionally pressure_angle
+        (angle unit, default 20°) the bearings' reactions include the tooth force."""
+        return self.add_coupler(name, "gear", joint1=joint1, joint2=joint2, ratio=ratio, pitch_radius=pitch_radius,
+                                pressure_angle=pressure_angle)
 
     def add_driver(self, name, type, function, **where):
         """A driver: type 'rotation'/'translation' of a joint (joint=), of a body

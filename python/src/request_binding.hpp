@@ -47,7 +47,7 @@ inline mechkin::RunRequest MakeRequest(int order, double tol, const std::string&
                                        std::optional<std::vector<std::string>> bodies,
                                        std::optional<std::vector<std::string>> outputs, bool si,
                                        std::optional<bool> forces, std::vector<std::string> sensitivity,
-                                       int max_iterations) {
+                                       int max_iterations, const std::string& on_limit) {
   mechkin::RunRequest r;
   r.order = order;
   r.tolerance = tol;
@@ -59,6 +59,7 @@ inline mechkin::RunRequest MakeRequest(int order, double tol, const std::string&
   r.forces = ForcesFromPython(forces);
   r.sensitivity = std::move(sensitivity);
   r.max_iterations = max_iterations;
+  r.set_limit_action(NamedOrThrow<mechkin::LimitAction>("on_limit", on_limit));
   return r;
 }
 
@@ -75,7 +76,8 @@ inline std::string RequestRepr(const mechkin::RunRequest& r) {
   return "RunRequest(order=" + std::to_string(r.order) + ", tol=" + tol + ", solver='" + mechkin::ToString(r.solver) +
          "', formulation='" + mechkin::ToString(r.formulation) + "', bodies=" + names(r.bodies) +
          ", outputs=" + names(r.outputs) + ", si=" + (r.si ? "True" : "False") + ", forces=" + forces +
-         ", sensitivity=" + names(std::optional<std::vector<std::string>>(r.sensitivity)) + ")";
+         ", sensitivity=" + names(std::optional<std::vector<std::string>>(r.sensitivity)) + ", on_limit='" +
+         mechkin::ToString(r.limit_action()) + "')";
 }
 
 inline void BindRunRequest(py::module_& mod) {
@@ -89,11 +91,13 @@ accelerations whatever the order shown), tol=1e-10 (position tolerance relative 
 the mechanism size, 1e-15 ... 1e-3), solver='newton' ('ceres'),
 formulation='omega' ('p'), bodies=None / outputs=None (None: every one; a list
 selects), si=False (SI units instead of the file's), forces=None (None: when the
-file has inertia or loads), sensitivity=[] (parameter names), max_iterations=25.)doc")
+file has inertia or loads), sensitivity=[] (parameter names), max_iterations=25,
+on_limit='stop' ('report': a joint reaching its limits is noted and the run goes on;
+the CLI's --on-limit).)doc")
       .def(py::init(&MakeRequest), py::arg("order") = 3, py::arg("tol") = 1e-10, py::arg("solver") = "newton",
            py::arg("formulation") = "omega", py::arg("bodies") = py::none(), py::arg("outputs") = py::none(),
            py::arg("si") = false, py::arg("forces") = py::none(), py::arg("sensitivity") = std::vector<std::string>{},
-           py::arg("max_iterations") = 25)
+           py::arg("max_iterations") = 25, py::arg("on_limit") = "stop")
       .def_readwrite("order", &RunRequest::order, "highest time derivative shown: 0 position ... 4 snap")
       .def_readwrite("tol", &RunRequest::tolerance, "position tolerance relative to the mechanism size, 1e-15 ... 1e-3")
       .def_property(
@@ -113,6 +117,13 @@ file has inertia or loads), sensitivity=[] (parameter names), max_iterations=25.
           "driver efforts, joint reactions, energies: None (when the file has inertia or loads), True, False")
       .def_readwrite("sensitivity", &RunRequest::sensitivity, "parameters: adds d(column)/d(parameter) columns")
       .def_readwrite("max_iterations", &RunRequest::max_iterations, "Newton iterations per step")
+      .def_property(
+          "on_limit", [](const RunRequest& r) { return std::string(mechkin::ToString(r.limit_action())); },
+          [](RunRequest& r, const std::string& s) {
+            r.set_limit_action(NamedOrThrow<mechkin::LimitAction>("on_limit", s));
+          },
+          "at a joint's limits: 'stop' (the crossing located, motion.stop.kind 'joint_limit') or 'report' "
+          "(noted in motion.notes, the run goes on)")
       .def(
           "is_valid",
           [](const RunRequest& r) {

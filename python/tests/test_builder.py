@@ -137,7 +137,7 @@ def test_builder_gear_pair_is_the_bundled_geared_crank_and_runs(root):
     for j in bundled["joints"]:
         m.add_joint(j["name"], j["type"], j["body1"], j["body2"], **{k: v for k, v in j.items() if k not in (
             "name", "type", "body1", "body2")})
-    m.add_gear("mesh", "motor_bearing", "crank_bearing", -0.25)
+    m.add_gear("mesh", "motor_bearing", "crank_bearing", -0.25, pitch_radius=16.0, pressure_angle=20.0)
     for d in bundled["drivers"]:
         m.add_driver(d["name"], d["type"], d["function"], joint=d["joint"])
     m.set_analysis(**bundled["analysis"])

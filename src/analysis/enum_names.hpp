@@ -9,6 +9,7 @@
 
 #include "analysis/kinematic_analysis.hpp"
 #include "analysis/motion.hpp"
+#include "analysis/run_request.hpp"
 #include "mobility/mobility.hpp"
 #include "model/model.hpp"
 
@@ -65,6 +66,11 @@ struct EnumNames<StopKind> {
                                                 {StopKind::SolveFailed, "solve_failed"},
                                                 {StopKind::Interrupted, "interrupted"},
                                                 {StopKind::JointLimit, "joint_limit"}};
+};
+// At a joint's limits (`run --on-limit`, Python's Model.run(on_limit=...)).
+template <>
+struct EnumNames<LimitAction> {
+  static constexpr EnumName<LimitAction> kAll[] = {{LimitAction::Stop, "stop"}, {LimitAction::Report, "report"}};
 };
 // `check`'s driving status (the `expect` key "driven").
 template <>

@@ -33,6 +33,19 @@ Span SpanOf(const SystemState& s, const Load& load) {
   return sp;
 }
 
+// The body whose joint frame reports joint `jt`'s reaction: body2, or body1 when
+// body2 is ground (minus the reaction on body1: action and reaction, §4).
+struct ReportSide {
+  BodyIndex body;
+  const JointFrame& frame;
+  double sign;
+};
+
+ReportSide ReportSideOf(const Joint& jt) {
+  if (jt.body2 != kGround) return {jt.body2, jt.frame2, 1.0};
+  return {jt.body1, jt.frame1, -1.0};
+}
+
 double Tension(const Load& l, const Span& sp) { return l.stiffness * (sp.L - l.free_length) + l.damping * sp.L1 + l.preload; }
 
 }  // namespace
@@ -191,6 +204,7 @@ void ForceSolver::Solve(KinematicsWorkspace& ws, const SystemState& s, ForceResu
   Efforts(s, out);
   Reactions(s, out);
   CouplerEfforts(s, out);
+  ToothForces(s, out);
   Energies(s, out);
 }
 
@@ -222,12 +236,10 @@ void ForceSolver::Reactions(const SystemState& s, ForceResults* out) const {
                   &out->force_joint_rate, &out->moment_joint_rate})
     v->assign(nj, Vec3::Zero());
   for (size_t j = 0; j < nj; ++j) {
-    const Joint& jt = model_.joints[j];
-    // The reaction on body2 if it moves; else minus the reaction on body1 (action and reaction).
-    const bool on2 = jt.body2 != kGround;
-    const BodyIndex b = on2 ? jt.body2 : jt.body1;
-    const double sign = on2 ? 1 : -1;
-    const JointFrame& frame = on2 ? jt.frame2 : jt.frame1;
+    const ReportSide side = ReportSideOf(model_.joints[j]);
+    const BodyIndex b = side.body;
+    const double sign = side.sign;
+    const JointFrame& frame = side.frame;
     const BodyKinematics& k = s.bodies[b];
     Vec3 F = Vec3::Zero(), T = Vec3::Zero(), F1 = Vec3::Zero(), T1 = Vec3::Zero();
     for (size_t e = 0; e < sys_.entries().size(); ++e) {
@@ -287,6 +299,51 @@ void ForceSolver::CouplerEfforts(const SystemState& s, ForceResults* out) const 
     out->coupler_power[en.source] = -Q * q1;
     out->coupler_power_rate[en.source] = -(Q1 * q1 + Q * q2);
   }
+}
+
+// §3.11.1: a gear with a pitch radius meshes by a tooth force f on gear 1 at the
+// pitch point (−f on gear 2), tangential part Q₁/ρ₁, radial part |Q₁/ρ₁| tan φ.
+// Its difference from the coupler's torques is an equilibrated set that the two
+// bearings on the common frame take: joint1's reaction on gear 1 changes by −f,
+// joint2's on gear 2 by +f and, about joint2's origin, by a h × f (a: the origins'
+// axial offset). In the frame body's axes, where the mesh geometry is constant.
+void ForceSolver::ToothForces(const SystemState& s, ForceResults* out) const {
+  for (size_t c = 0; c < model_.couplers.size(); ++c) {
+    if (!model_.couplers[c].mesh) continue;
+    const GearMesh& m = *model_.couplers[c].mesh;
+    const BodyKinematics& k = s.Kin(m.frame);
+    const double Ft = out->coupler_effort[c][0] / m.pitch_radius;
+    const double Ft1 = out->coupler_effort_rate[c][0] / m.pitch_radius;
+    const Vec3 tangent = m.axis.cross(m.radial), radial = m.radial_sign * m.tan_pressure * m.radial;
+    const Vec3 f = Ft * tangent + std::abs(Ft) * radial;
+    const Vec3 f1 = Ft1 * tangent + (Ft < 0 ? -Ft1 : Ft1) * radial;
+    const Vec3 moment = m.axial_offset * m.axis.cross(f), moment1 = m.axial_offset * m.axis.cross(f1);
+    const Vec3 zero = Vec3::Zero();
+    AddReactionChange(s, model_.couplers[c].coordinates[0].joint, k, -f, -f1, zero, zero, out);
+    AddReactionChange(s, model_.couplers[c].coordinates[1].joint, k, f, f1, moment, moment1, out);
+  }
+}
+
+// Adds a change of joint j's reported reaction given in the axes of body `k` (and
+// its rate there) to the global and joint-frame columns.
+void ForceSolver::AddReactionChange(const SystemState& s, int j, const BodyKinematics& k, const Vec3& force,
+                                    const Vec3& force1, const Vec3& moment, const Vec3& moment1,
+                                    ForceResults* out) const {
+  const Vec3 F = k.A * force, F1 = k.A * (k.w[0].cross(force) + force1);
+  const Vec3 M = k.A * moment, M1 = k.A * (k.w[0].cross(moment) + moment1);
+  const ReportSide side = ReportSideOf(model_.joints[j]);
+  const BodyKinematics& b = s.Kin(side.body);
+  Mat3 C;
+  C << side.frame.f, side.frame.g, side.frame.h;
+  out->force[j] += F;
+  out->moment[j] += M;
+  out->force_joint[j] += C.transpose() * (b.A.transpose() * F);
+  out->moment_joint[j] += C.transpose() * (b.A.transpose() * M);
+  if (!out->rates) return;
+  out->force_rate[j] += F1;
+  out->moment_rate[j] += M1;
+  out->force_joint_rate[j] += C.transpose() * LocalRate(b, F, F1);
+  out->moment_joint_rate[j] += C.transpose() * LocalRate(b, M, M1);
 }
 
 // Kinetic and potential (gravity, springs) energy and the balance

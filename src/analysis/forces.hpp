@@ -33,7 +33,8 @@ struct ForceResults {
   // Per coupler (constraints.md §3.11): the generalized force on each coordinate,
   // Q_k = −c_k λ (a torque on a rotation, a force on a slide, body2 relative to
   // body1), and the power it takes from the first coordinate, −Q_1 q̇_1 (what the
-  // mesh transmits; Σ_k Q_k q̇_k = 0).
+  // mesh transmits; Σ_k Q_k q̇_k = 0). A gear with a pitch radius adds its tooth
+  // force to its two bearings' reactions (§3.11.1).
   std::vector<std::array<double, 3>> coupler_effort, coupler_effort_rate;
   std::vector<double> coupler_power, coupler_power_rate;
   double kinetic = 0, potential = 0;
@@ -65,6 +66,9 @@ class ForceSolver {
   void Efforts(const SystemState& s, ForceResults* out) const;
   void Reactions(const SystemState& s, ForceResults* out) const;
   void CouplerEfforts(const SystemState& s, ForceResults* out) const;
+  void ToothForces(const SystemState& s, ForceResults* out) const;
+  void AddReactionChange(const SystemState& s, int j, const BodyKinematics& k, const Vec3& force, const Vec3& force1,
+                         const Vec3& moment, const Vec3& moment1, ForceResults* out) const;
   void Energies(const SystemState& s, ForceResults* out) const;
 
   const ConstraintSystem& sys_;

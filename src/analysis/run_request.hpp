@@ -28,6 +28,11 @@ enum class ForcesChoice {
   Off,   // never: kinematics only
 };
 
+/// What a run does when a joint reaches its limits: stop there (the crossing located),
+/// or note it and go on. The CLI's `--on-limit` and Python's `on_limit` (their names
+/// in analysis/enum_names.hpp).
+enum class LimitAction { Stop, Report };
+
 struct RunRequest {
   // --- what the table shows ---
   int order = 3;           // highest time derivative shown: 0 position, 1 velocity … 4 snap
@@ -44,6 +49,8 @@ struct RunRequest {
   int predictor_order = 3;   // Taylor predictor of the next pose (used up to the solved order)
   bool keep_step_diagnostics = true;  // every row's StepDiagnostics in the report (streaming runs: off)
   bool on_limit_report = false;       // joint limits: note a crossing and go on (default: stop there)
+  LimitAction limit_action() const { return on_limit_report ? LimitAction::Report : LimitAction::Stop; }
+  void set_limit_action(LimitAction a) { on_limit_report = a == LimitAction::Report; }
 
   // The ranges (kMinTolerance, kMaxTolerance, order 0..kMaxOrder) and their messages are
   // the solver's (CheckSolverFields, analysis/kinematic_analysis.hpp): one definition.

@@ -110,9 +110,91 @@ void Compiler::CompileCoupler(const CouplerSpec& c) {
     }
     cp.coordinates = {*t1, *t2};
     cp.ratio = *factor;
+    if (*kind == CouplerKind::Gear && (c.pitch_radius || c.pressure_angle)) {
+      cp.mesh = CompileGearMesh(c, cp);
+      if (!cp.mesh) return;
+    }
   }
   if (!ok) return;
   model_.couplers.push_back(cp);
+}
+
+// A tooth force needs two revolutes with parallel axes on one frame body (body1 of
+// both): §3.11.1 moves the difference between the coupler's torques and the force
+// at the pitch point into those two bearings, which is exact only then.
+bool Compiler::GearMeshJoints(const std::string& ptr, const Joint& j1, const Joint& j2) {
+  const std::string drop = "or drop pitch_radius (the gear then acts on the joints as torques only)";
+  for (const Joint* j : {&j1, &j2})
+    if (j->type != JointType::Revolute) {
+      Error(ptr, "a tooth force needs revolute bearings, and joint '" + j->name + "' is " + JointTypeName(j->type),
+            "mount both gears on revolute joints, " + drop);
+      return false;
+    }
+  if (j1.body1 != j2.body1) {
+    Error(ptr, "the tooth force needs both gears' bearings on one frame body, and joint '" + j1.name +
+                   "' has body1 '" + model_.BodyName(j1.body1) + "', joint '" + j2.name + "' body1 '" +
+                   model_.BodyName(j2.body1) + "'",
+          "make the common frame (ground, a gearbox, a carrier) body1 of both joints, " + drop);
+    return false;
+  }
+  if (j1.frame1.h.cross(j2.frame1.h).norm() > 1e-9) {
+    Error(ptr, "the tooth force is for parallel axes, and joints '" + j1.name + "' and '" + j2.name +
+                   "' are not parallel (a bevel or worm pair)",
+          drop);
+    return false;
+  }
+  return true;
+}
+
+// §3.11.1: the pitch point on the line of centres, ρ₁ from axis 1, ρ₂ = ρ₁/|r|; an
+// external mesh when the gears turn opposite ways (r h₁ᵀh₂ < 0), else internal.
+std::optional<GearMesh> Compiler::CompileGearMesh(const CouplerSpec& c, const Coupler& cp) {
+  const std::string ptr = c.pointer + (c.pitch_radius ? "/pitch_radius" : "/pressure_angle");
+  if (!c.pitch_radius) {
+    Error(ptr, "'pressure_angle' without 'pitch_radius'", "give gear 1's pitch radius too, or drop pressure_angle");
+    return std::nullopt;
+  }
+  const auto rho = CouplerFactor(c.pitch_radius, "pitch_radius", c.pointer, length_);
+  const auto phi = c.pressure_angle ? Value(c.pressure_angle) : std::optional<double>(20.0 * M_PI / 180 / angle_);
+  if (!rho || !phi) return std::nullopt;
+  if (*rho < 0) {
+    Error(ptr, "'pitch_radius' must be positive, not " + FormatNumber(*rho / length_), "the sense is the ratio's sign");
+    return std::nullopt;
+  }
+  const double angle = *phi * angle_;
+  if (!(angle >= 0 && angle < M_PI / 2 - 1e-9)) {
+    Error(c.pointer + "/pressure_angle", "'pressure_angle' must be at least 0 and less than a right angle, not " + FormatNumber(*phi),
+          "give the pressure angle in the file's angle unit (20 degrees is the standard)");
+    return std::nullopt;
+  }
+  const Joint& j1 = model_.joints[cp.coordinates[0].joint];
+  const Joint& j2 = model_.joints[cp.coordinates[1].joint];
+  if (!GearMeshJoints(ptr, j1, j2)) return std::nullopt;
+  GearMesh m;
+  m.frame = j1.body1;
+  m.pitch_radius = *rho;
+  m.tan_pressure = std::tan(angle);
+  m.axis = j1.frame1.h;
+  const Vec3 d = j2.frame1.origin - j1.frame1.origin;
+  const Vec3 across = d - m.axis * m.axis.dot(d);
+  const double r = std::abs(cp.ratio), rho2 = *rho / r, centres = across.norm();
+  const bool external = cp.ratio * j1.frame1.h.dot(j2.frame1.h) < 0;
+  const double expected = external ? *rho + rho2 : std::abs(*rho - rho2);
+  if (!(centres > 0) || std::abs(centres - expected) > 1e-6 * std::max(centres, expected)) {
+    const double fit = external ? centres / (1 + 1 / r) : (r == 1 ? 0 : centres / std::abs(1 - 1 / r));
+    Error(ptr, std::string(external ? "external" : "internal") + " gears of pitch radii " + FormatNumber(*rho / length_) +
+                   " and " + FormatNumber(rho2 / length_) + " need centres " + FormatNumber(expected / length_) +
+                   " apart, and the joints' axes are " + FormatNumber(centres / length_) + " apart",
+          fit > 0 ? "for these bearings and ratio the pitch radius is " + FormatNumber(fit / length_)
+                  : "coaxial bearings or an internal pair of ratio 1 cannot mesh: drop pitch_radius");
+    return std::nullopt;
+  }
+  // Gear 1 is the smaller of an internal pair: the pitch point lies away from gear 2's axis.
+  const bool ring1 = !external && *rho > rho2;
+  m.radial = (!external && !ring1 ? -1.0 : 1.0) * across / centres;
+  m.radial_sign = ring1 ? 1 : -1;
+  m.axial_offset = -m.axis.dot(d);
+  return m;
 }
 
 // Σ c_k q_k = c_0, the coordinates in the file's units (angle unit for rotations,

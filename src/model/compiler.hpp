@@ -117,6 +117,8 @@ class Compiler {
                                                std::optional<bool> rotation, const std::string& type);
   std::optional<double> CouplerFactor(const std::optional<Scalar>& s, const std::string& key, const std::string& ptr,
                                       double unit);
+  std::optional<GearMesh> CompileGearMesh(const CouplerSpec& c, const Coupler& cp);
+  bool GearMeshJoints(const std::string& ptr, const Joint& j1, const Joint& j2);
 
   // Outputs, loads, functions (compile_outputs.cpp).
   std::optional<TimeFunction> CompileFunction(const FunctionSpec& f, double scale);

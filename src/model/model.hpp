@@ -97,6 +97,21 @@ struct CouplerCoordinate {
   double coefficient = 1;  // c_k of the general coupling (SI: per rad, per m)
 };
 
+/// A gear pair's mesh on bearings in one frame body (constraints.md §3.11.1), from a
+/// gear's `pitch_radius`: where and along which line the tooth force acts, in the
+/// frame body's coordinates (constant there).
+struct GearMesh {
+  BodyIndex frame = kGround;    // body1 of both revolute joints
+  double pitch_radius = 0;      // ρ₁ (m), gear 1's
+  double tan_pressure = 0;      // tan φ
+  Vec3 axis = Vec3::UnitZ();    // h₁' (joint1's axis): Q₁ turns gear 1 about it
+  Vec3 radial = Vec3::UnitX();  // e', unit, from joint1's axis to the pitch point
+  // +1: gear 1's teeth are internal (the ring), the radial part pushes it outwards;
+  // −1: external teeth, pushed towards its own axis.
+  double radial_sign = -1;
+  double axial_offset = 0;      // a = (O₁ − O₂)ᵀh₁' (m): joint2's origin off the pitch plane
+};
+
 /// A coupler between joint coordinates (docs/format.md "couplers", constraints.md
 /// §3.11): one equation Σ c_k q_k = c_0 (SI).
 struct Coupler {
@@ -107,6 +122,7 @@ struct Coupler {
   // screw_coupling: the pitch (m per turn). Unused by a coupling.
   double ratio = 0;
   double constant = 0;  // c_0 of a coupling (SI, after the scaling of §3.11)
+  std::optional<GearMesh> mesh;  // gear with `pitch_radius`: the tooth force enters the reactions
 };
 
 enum class DriverKind { JointRotation, BodyRotation, JointTranslation, Distance };

@@ -19,13 +19,14 @@ void CouplerKeys(const std::string& type, std::vector<std::string>* allowed, std
     allowed->insert(allowed->end(), keys.begin(), keys.end());
     required->insert(required->end(), keys.begin(), keys.end());
   };
-  if (type == "gear" || type == "belt") add({"joint1", "joint2", "ratio"});
+  if (type == "gear") add({"joint1", "joint2", "ratio"}), allowed->insert(allowed->end(), {"pitch_radius", "pressure_angle"});
+  else if (type == "belt") add({"joint1", "joint2", "ratio"});
   else if (type == "rack_pinion") add({"joint1", "joint2", "pitch_radius"});
   else if (type == "screw_coupling") add({"joint1", "joint2", "pitch"});
   else if (type == "coupling") add({"joints", "coefficients"}), allowed->insert(allowed->end(), {"constant", "coordinates"});
   else
-    allowed->insert(allowed->end(), {"joint1", "joint2", "ratio", "pitch_radius", "pitch", "joints", "coefficients",
-                                     "constant", "coordinates"});
+    allowed->insert(allowed->end(), {"joint1", "joint2", "ratio", "pitch_radius", "pressure_angle", "pitch", "joints",
+                                     "coefficients", "constant", "coordinates"});
 }
 
 // c[key] as an array of strings (joint names, coordinate kinds).
@@ -94,6 +95,7 @@ void ReadCoupler(JsonReader& rd, const json& c, const std::string& ptr, Mechanis
   cp.ratio = rd.Number(c, "ratio", ptr);
   cp.pitch_radius = rd.Number(c, "pitch_radius", ptr);
   cp.pitch = rd.Number(c, "pitch", ptr);
+  cp.pressure_angle = rd.Number(c, "pressure_angle", ptr);
   ReadCouplingLists(rd, c, ptr, &cp);
   spec->couplers.push_back(std::move(cp));
 }

@@ -127,6 +127,7 @@ struct CouplerSpec {
   std::vector<std::string> joints, coordinates;  // coupling
   std::vector<Scalar> coefficients;              // coupling
   std::optional<Scalar> ratio, pitch_radius, pitch, constant;
+  std::optional<Scalar> pressure_angle;  // gear with pitch_radius (file angle unit)
   std::string pointer;
   bool ok = true;  // false: the reader reported a structural error
 };

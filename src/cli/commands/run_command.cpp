@@ -38,7 +38,7 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
   cmd->add_option("--on-limit", o->on_limit,
                   "At a joint's limits (\"limits\" in the file): stop (default; the crossing located) or report "
                   "(note it on stderr and go on)")
-      ->check(CLI::IsMember({"stop", "report"}));
+      ->check(CLI::IsMember(NamesOf<LimitAction>()));
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_flag("--quiet", o->quiet,
                 "No notes on stderr: redundant equations set aside, undetermined reactions, singular passages "
@@ -61,7 +61,9 @@ RunRequest RunOptions::Request() const {
   if (outputs_given) r.outputs = outputs;
   r.forces = no_forces ? ForcesChoice::Off : forces ? ForcesChoice::On : ForcesChoice::Auto;
   r.sensitivity = sensitivity;
-  r.on_limit_report = on_limit == "report";
+  LimitAction at_limit = LimitAction::Stop;
+  Parse(on_limit, &at_limit);  // CLI11 admitted only NamesOf<LimitAction>()
+  r.set_limit_action(at_limit);
   r.keep_step_diagnostics = false;  // streamed: the table's diagnostic columns carry them
   return r;
 }
