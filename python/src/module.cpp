@@ -23,6 +23,7 @@
 #include "io/tolerance_report_writer.hpp"
 #include "analysis/load.hpp"
 #include "check_report_binding.hpp"
+#include "interrupt_binding.hpp"
 #include "request_binding.hpp"
 
 namespace py = pybind11;
@@ -119,10 +120,13 @@ py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int step
   options.span = span;
   options.tolerance = tol;
   RangeReport report;
+  const PythonInterrupt interrupt;
+  options.interrupted = interrupt.Poll();
   {
     py::gil_scoped_release release;
     report = CalcRange(*m.model, options);
   }
+  interrupt.RethrowIfRaised();
   return ReportAndText(report, &RangeReportJsonText, &PrintRangeReport);
 }
 
@@ -139,10 +143,13 @@ py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, uns
   options.seed = seed;
   options.threads = threads;
   ToleranceReport report;
+  const PythonInterrupt interrupt;
+  options.request.interrupted = interrupt.Poll();
   {
     py::gil_scoped_release release;
     report = AnalyzeTolerances(*m.model, options);
   }
+  interrupt.RethrowIfRaised();
   return ReportAndText(report, &ToleranceReportJsonText, &PrintToleranceReport);
 }
 
@@ -196,10 +203,13 @@ std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, RunRequest request, std
   }
   auto out = std::make_shared<PyMotion>();
   out->model = model;
+  const PythonInterrupt interrupt;
+  plan.analysis.interrupted = interrupt.Poll();
   {
     py::gil_scoped_release release;
     out->motion = std::make_unique<Motion>(RunPlanned(*model, plan));
   }
+  interrupt.RethrowIfRaised();
   return out;
 }
 
@@ -307,10 +317,13 @@ py::dict RunVariantSummary(const LoadedModel& lm, const ParameterOverrides& valu
   options.request.order = order;
   options.request.tolerance = tol;
   VariantSummary v;
+  const PythonInterrupt interrupt;
+  options.request.interrupted = interrupt.Poll();
   {
     py::gil_scoped_release release;
     v = RunVariant(*lm.model, values, options);
   }
+  interrupt.RethrowIfRaised();
   py::dict d, params;
   for (const auto& kv : values) params[py::str(kv.first)] = kv.second;
   d["parameters"] = params;
@@ -387,6 +400,8 @@ PYBIND11_MODULE(_mechkin, mod) {
   mod.doc() = "mechkin core (C++); use the `mechkin` package";
   BindRunRequest(mod);
   BindCheckReport(mod);
+  mod.def("stop_all", [](bool stop) { StopAllFlag() = stop; },
+          "While true, every running call of the core stops at its next step (a sweep's pool on Ctrl-C)");
   py::class_<LoadedModel, std::shared_ptr<LoadedModel>>(mod, "CoreModel", "A compiled model (mechkin.Model wraps it)")
       .def_readonly("text", &LoadedModel::text)
       .def_readonly("source", &LoadedModel::source)

@@ -30,6 +30,7 @@ RangeEnd Sweep(const Model& model, int d, double sign, double span, const RangeO
   a.order = 1;
   a.tolerance = options.tolerance;
   a.keep_step_diagnostics = true;
+  a.interrupted = options.interrupted;
   TableOptions table;
   table.order = 1;
   table.all_outputs = false;
@@ -40,7 +41,9 @@ RangeEnd Sweep(const Model& model, int d, double sign, double span, const RangeO
     if (st.condition > out->max_condition)
       out->max_condition = st.condition, out->value_at_max_condition = (v0 + sign * span * st.t) * to_file;
   RangeEnd end;
-  if (motion.complete) {
+  if (motion.report.stop == StopKind::Interrupted) {
+    end.kind = "interrupted";  // not reported: CalcRange ends the report before this driver
+  } else if (motion.complete) {
     end.kind = IsAngleDriver(model.drivers[d]) ? "full turn" : "open";
     end.value = (v0 + sign * span) * to_file;
   } else if (motion.report.stop == StopKind::JointLimit && !motion.report.joint_limits.empty()) {
@@ -81,8 +84,15 @@ RangeReport CalcRange(const Model& model, const RangeOptions& options) {
                                                          : 4 * model.characteristic_length);
     r.upper = Sweep(model, static_cast<int>(d), 1, span, options, &r);
     if (r.upper.kind == "full turn") r.lower = r.upper, r.lower.value = r.design_value - (r.upper.value - r.design_value);
-    else r.lower = Sweep(model, static_cast<int>(d), -1, span, options, &r);
+    else if (r.upper.kind != "interrupted") r.lower = Sweep(model, static_cast<int>(d), -1, span, options, &r);
+    rep.interrupted = r.upper.kind == "interrupted" || r.lower.kind == "interrupted";
+    if (rep.interrupted) break;
     rep.drivers.push_back(r);
+  }
+  if (rep.interrupted) {
+    rep.ok = true;
+    rep.message = "interrupted";
+    return rep;
   }
   if (rep.drivers.empty()) {
     std::string names;

@@ -44,6 +44,7 @@ struct RunRequest {
   int predictor_order = 3;   // Taylor predictor of the next pose (used up to the solved order)
   bool keep_step_diagnostics = true;  // every row's StepDiagnostics in the report (streaming runs: off)
   bool on_limit_report = false;       // joint limits: note a crossing and go on (default: stop there)
+  InterruptPoll interrupted;          // polled between steps and runs: true stops (Interrupted)
 
   // The ranges (kMinTolerance, kMaxTolerance, order 0..kMaxOrder) and their messages are
   // the solver's (CheckSolverFields, analysis/kinematic_analysis.hpp): one definition.

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "analysis/enum_names.hpp"
+#include "io/interrupt.hpp"
 
 namespace mechkin {
 namespace {
@@ -78,6 +79,16 @@ CLI::Option* AddFormulationOption(CLI::App* cmd, RunRequest* request) {
           "--formulation", [request](const std::string& s) { Parse(s, &request->formulation); },
           "Rotational unknowns of the derivative solves (" + NameList<Formulation>() + ")")
       ->check(CLI::IsMember(NamesOf<Formulation>()));
+}
+
+CLI::Option* AddKeepPartialOption(CLI::App* cmd, bool* keep_partial, const std::string& what) {
+  return cmd->add_flag("--keep-partial", *keep_partial,
+                       "On Ctrl-C (SIGINT) write " + what + " so far, marked partial (exit 130), instead of nothing");
+}
+
+InterruptPoll InstallInterruptPoll(bool keep_partial) {
+  InstallInterruptHandlers(keep_partial);
+  return [] { return InterruptRequested(); };
 }
 
 }  // namespace mechkin

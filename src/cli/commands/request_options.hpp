@@ -23,5 +23,14 @@ CLI::Option* AddToleranceOption(CLI::App* cmd, RunRequest* request, const std::s
 CLI::Option* AddSolverOption(CLI::App* cmd, RunRequest* request);
 /// --formulation NAME into `request->formulation`.
 CLI::Option* AddFormulationOption(CLI::App* cmd, RunRequest* request);
+/// --keep-partial: on Ctrl-C (SIGINT) the command stops at its next step and writes
+/// `what` so far, marked partial, and exits 130 (as `run --keep-partial`).
+CLI::Option* AddKeepPartialOption(CLI::App* cmd, bool* keep_partial, const std::string& what);
+/// Installs the SIGINT/SIGTERM handlers (io/interrupt.hpp: without keep_partial a
+/// signal removes the temporary output and ends the process) and returns the poll
+/// the analysis asks between steps and runs.
+InterruptPoll InstallInterruptPoll(bool keep_partial);
+/// The exit code of an interrupted command (128 + SIGINT, as a shell reports Ctrl-C).
+constexpr int kInterruptedExit = 130;
 
 }  // namespace mechkin

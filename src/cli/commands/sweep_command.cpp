@@ -25,6 +25,7 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
   AddToleranceOption(cmd, &o->request, "Position tolerance of every run (default 1e-10)");
   cmd->add_option("--set", o->set, "Parameter value replacing the file's for every variant: NAME=NUMBER");
   cmd->add_flag("--merge", o->merge, "Join shard files written with --format json");
+  AddKeepPartialOption(cmd, &o->keep_partial, "the variants finished");
 }
 
 namespace {
@@ -129,12 +130,14 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
   if (!Variants(o, *model, options, &variants, err)) return 2;
   if (!Open(o, &file, out, err)) return 1;
   options.request = o.request;
+  options.request.interrupted = InstallInterruptPoll(o.keep_partial);
   options.threads = o.threads;
   SweepResult result = RunSweepShard(*model, variants, options);
   if (o.format == "json")
     result.identity = SweepIdentityText({o.files.front(), o.request.order, o.request.tolerance,
                                          static_cast<int>(o.request.solver), overrides, o.grid, o.samples, o.seed});
-  return Write(o, result, &file, err) ? 0 : 1;
+  if (!Write(o, result, &file, err)) return 1;
+  return result.interrupted ? kInterruptedExit : 0;
 }
 
 }  // namespace mechkin

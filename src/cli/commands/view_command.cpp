@@ -24,6 +24,7 @@ void SetupViewCommand(CLI::App& app, ViewOptions* o) {
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
   cmd->add_option("--up", o->up, "Axis drawn upwards (default: the file's view.up, else against gravity, else y)")->check(CLI::IsMember({"x", "y", "z"}));
   cmd->add_option("--plots", o->plots, "Plotted columns: names separated by ',' within a plot, ';' between plots");
+  AddKeepPartialOption(cmd, &o->keep_partial, "the page of the rows computed");
 }
 
 namespace {
@@ -48,7 +49,7 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides);
   if (!loaded) return 1;
   const Model& model = *loaded;
-  const RunRequest request = o.Request();
+  RunRequest request = o.Request();
   std::string why;
   if (!request.IsValid(&why)) {
     err << "mechkin view: " << why << "\n";
@@ -62,7 +63,9 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
     err << "mechkin view: " << why << "\n";
     return 1;
   }
+  request.interrupted = InstallInterruptPoll(o.keep_partial);
   const Motion motion = RunMotion(model, request);
+  const bool interrupted = motion.stop.kind == StopKind::Interrupted;
   if (!motion.complete) err << "mechkin view: " << o.file << ": " << motion.stop.message << "\n";
   if (motion.rows() == 0) return 1;  // nothing to show
   SceneOptions scene;
@@ -84,7 +87,7 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
     }
     out << "glTF written to " << o.gltf << "\n";
   }
-  return motion.complete ? 0 : 1;
+  return motion.complete ? 0 : interrupted ? kInterruptedExit : 1;
 }
 
 }  // namespace mechkin
