@@ -181,8 +181,9 @@ std::shared_ptr<const Model> WithSpan(const std::shared_ptr<const Model>& model,
   if (start) copy->analysis->start = *start;
   if (end) copy->analysis->end = *end;
   if (steps) copy->analysis->steps = *steps;
-  if (!(copy->analysis->end > copy->analysis->start) || copy->analysis->steps < 1)
-    throw py::value_error("need end > start and steps >= 1");
+  // The file's own limits and messages (model/model.hpp SpanProblem): steps=10**8 or end=inf are refused here.
+  const std::string why = SpanProblem(copy->analysis->start, copy->analysis->end, copy->analysis->steps);
+  if (!why.empty()) throw py::value_error(why);
   return copy;
 }
 

@@ -288,8 +288,8 @@ void Compiler::CompileAnalysis() {
   auto n = Integer(a.steps, "steps");
   if (s && e && !(*e > *s)) Error("/analysis/end", "'end' must be greater than 'start'", "set end > start");
   if (n && *n < 1) Error("/analysis/steps", "'steps' must be at least 1", "give the number of intervals (rows = steps + 1)");
-  if (n && *n > 10000000) Error("/analysis/steps", "'steps' is larger than 10,000,000", "use fewer steps");
-  if (s && e && n && *e > *s && *n >= 1 && *n <= 10000000) model_.analysis = Analysis{*s, *e, *n, {}, {}};
+  if (n && *n > kMaxSteps) Error("/analysis/steps", SpanProblem(0, 1, *n), "use fewer steps");
+  if (s && e && n && SpanProblem(*s, *e, *n).empty()) model_.analysis = Analysis{*s, *e, *n, {}, {}};
   if (a.branch && model_.analysis) CompileBranch(*a.branch, &*model_.analysis);
 }
 
