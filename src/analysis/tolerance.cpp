@@ -193,6 +193,14 @@ ToleranceReport AnalyzeTolerances(const Model& model, const ToleranceOptions& op
   const std::vector<int> cols = ValueColumns(nominal);
   for (int c : cols) rep.columns.push_back(LinearStack(nominal, c, rep));
   if (options.monte_carlo > 0) MonteCarlo(model, nominal, cols, options, &rep);
+  if (options.monte_carlo > 0 && rep.samples == 0 && !rep.interrupted) {
+    // No sample to compare with the nominal motion: a "largest deviation 0" would read as a pass.
+    rep.message = "every one of the " + std::to_string(rep.failed_samples) +
+                  " Monte-Carlo samples failed (the variant did not compile or did not run the whole motion), so "
+                  "there is no Monte-Carlo check: compare the tolerances with the mechanism's range (mechkin "
+                  "range), or run without --monte-carlo for the linear estimate";
+    return rep;
+  }
   rep.ok = true;
   return rep;
 }
