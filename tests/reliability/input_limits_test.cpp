@@ -5,9 +5,13 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "analysis/load.hpp"
+#include "cli_runner.hpp"
 
 namespace {
 
@@ -49,6 +53,69 @@ TEST(JsonNesting, TwentyMegabytesOfOpenBracketsAreRefusedWithoutAllocating) {
   EXPECT_EQ(r.errors.front().message, "the JSON nests deeper than 100 levels of '[' and '{' at line 1, column 101");
   EXPECT_LT(grown_mb, 100) << "peak memory grew by " << grown_mb << " MB";
   std::printf("20 MB of '[': peak memory grew by %ld MB\n", grown_mb);
+}
+
+std::string ReadText(const std::string& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// `view` keeps only the page's rows while the run goes (a 1e7-step view held the whole
+// table, > 4 GB); with --gltf the whole motion is kept and the page decimates it. The
+// two pages must be the same bytes: the rows kept are the rows the page shows.
+TEST(PageRows, TheRowsKeptDuringTheRunAreThePagesFrames) {
+  std::ifstream in(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-four-bar.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  j["analysis"]["steps"] = 20011;  // not a multiple of the frames
+  const std::string dir = ::testing::TempDir();
+  const std::string file = dir + "/page-rows.json";
+  std::ofstream(file) << j.dump();
+  for (const std::string frames : {"300", "2000"}) {
+    const auto a = mechkin_test::RunCli("view " + file + " --order 1 --max-frames " + frames + " -o " + dir + "/a.html");
+    const auto b = mechkin_test::RunCli("view " + file + " --order 1 --max-frames " + frames + " -o " + dir +
+                                        "/b.html --gltf " + dir + "/b.glb");
+    ASSERT_EQ(a.code, 0) << a.out;
+    ASSERT_EQ(b.code, 0) << b.out;
+    const std::string page_a = ReadText(dir + "/a.html"), page_b = ReadText(dir + "/b.html");
+    EXPECT_GT(page_a.size(), 100000u);
+    EXPECT_TRUE(page_a == page_b) << "--max-frames " << frames << ": the pages differ";
+  }
+}
+
+// The peak memory of the largest child of this test process (ctest runs each test alone).
+long ChildPeakMb() {
+  rusage u{};
+  ::getrusage(RUSAGE_CHILDREN, &u);
+  return u.ru_maxrss / 1024;
+}
+
+std::string FourBarWithSteps(int steps) {
+  std::ifstream in(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-four-bar.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  j["analysis"]["steps"] = steps;
+  const std::string file = ::testing::TempDir() + "/four-bar-" + std::to_string(steps) + ".json";
+  std::ofstream(file) << j.dump();
+  return file;
+}
+
+// 300,000 steps held the whole table (about 180 MB here; 1e7 steps: > 4 GB).
+TEST(PageRows, AViewKeepsThePagesRowsNotTheTable) {
+  const auto r = mechkin_test::RunCli("view " + FourBarWithSteps(300000) + " -o " + ::testing::TempDir() + "/long.html");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_LT(ChildPeakMb(), 80) << "peak MB of the view";
+  std::printf("view of 300000 steps: peak %ld MB\n", ChildPeakMb());
+}
+
+// range kept every step's diagnostics and the whole table (471 MB at --steps 1e6).
+TEST(RangeRows, ARangeKeepsNoTable) {
+  const std::string four_bar = std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-four-bar.json";
+  const auto r = mechkin_test::RunCli("range " + four_bar + " --steps 300000");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("full turn"), std::string::npos) << r.out;
+  EXPECT_LT(ChildPeakMb(), 60) << "peak MB of the range";
+  std::printf("range --steps 300000: peak %ld MB\n", ChildPeakMb());
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "cli/commands/view_command.hpp"
 
+#include <cmath>
+
 #include "analysis/run_request.hpp"
 #include "cli/commands/load_for_command.hpp"
 #include "cli/commands/request_options.hpp"
@@ -35,6 +37,53 @@ std::string DefaultPage(const std::string& file) {
   return (stem.empty() ? "mechanism" : stem) + ".html";
 }
 
+// Keeps only the rows the page shows, as the run makes them: the max_frames evenly
+// spaced rows of the planned run (io/viewer.cpp Frames: index round(k (N−1)/(M−1)),
+// first and last included) and, for a run that stops early, its last row. A 1e7-step
+// view so holds ~2000 rows instead of the whole table (the glTF, a keyframe per row,
+// still takes the whole motion). A complete run gives the page it gave before.
+class PageRowSink : public RowSink {
+ public:
+  PageRowSink(Motion* motion, long long planned_rows, int max_frames)
+      : motion_(motion), planned_(planned_rows), frames_(std::max(2, max_frames)), last_(motion->cols()) {}
+  bool Append(const double* row, int size) override {
+    const bool keep = planned_ <= frames_ || index_ == Target();
+    if (keep) {
+      motion_->Append(row, size);
+      ++frame_;
+    } else {
+      std::copy(row, row + size, last_.begin());
+    }
+    pending_ = !keep;
+    ++index_;
+    return true;
+  }
+  /// The stop row of a run that ended between two kept rows.
+  void Finish() {
+    if (pending_) motion_->Append(last_.data(), static_cast<int>(last_.size()));
+  }
+
+ private:
+  long long Target() const { return std::llround(double(frame_) * (planned_ - 1) / (frames_ - 1)); }
+  Motion* motion_;
+  long long planned_, index_ = 0, frame_ = 0;
+  int frames_;
+  std::vector<double> last_;
+  bool pending_ = false;
+};
+
+// The run for the page alone (no glTF): only the page's rows kept (PageRowSink).
+Motion RunForPage(const Model& model, const RunRequest& request, int max_frames) {
+  const RunPlan plan = PlanRun(model, request);
+  Motion motion{MotionLayout(model, plan.table)};
+  PageRowSink sink(&motion, model.analysis ? model.analysis->steps + 1LL : 0, max_frames);
+  motion.report = RunIntoSink(model, plan.analysis, motion.layout(), &sink);
+  sink.Finish();
+  motion.complete = motion.report.complete;
+  motion.stop = StopOf(motion.report);
+  return motion;
+}
+
 }  // namespace
 
 RunRequest ViewOptions::Request() const {
@@ -64,7 +113,7 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
     return 1;
   }
   request.interrupted = InstallInterruptPoll(o.keep_partial);
-  const Motion motion = RunMotion(model, request);
+  const Motion motion = o.gltf.empty() ? RunForPage(model, request, o.max_frames) : RunMotion(model, request);
   const bool interrupted = motion.stop.kind == StopKind::Interrupted;
   if (!motion.complete) err << "mechkin view: " << o.file << ": " << motion.stop.message << "\n";
   if (motion.rows() == 0) return 1;  // nothing to show
