@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "analysis/check_report.hpp"
+#include "analysis/count_limits.hpp"
 #include "analysis/enum_names.hpp"
 #include "analysis/motion.hpp"
 #include "analysis/range.hpp"
@@ -111,7 +112,7 @@ void ValidateOrderAndTolerance(int order, double tol) {
 
 // `mechkin range`: (report dict, text).
 py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int steps, double span, double tol) {
-  Require(steps >= 4 && steps <= 10000000, "steps must be between 4 and 10000000");
+  Require(CountProblem(kRangeSteps, steps).empty(), CountProblem(kRangeSteps, steps));
   Require(span >= 0 && std::isfinite(span), "span must be a positive length in file units (0: 4 x the mechanism's size)");
   ValidateOrderAndTolerance(0, tol);
   RangeOptions options;
@@ -134,7 +135,7 @@ py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int step
 py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, unsigned long seed, int threads,
                            double tol) {
   ValidateOrderAndTolerance(order, tol);
-  Require(monte_carlo >= 0 && monte_carlo <= 100000000, "monte_carlo must be between 0 and 100000000");
+  Require(CountProblem(kMonteCarloSamples, monte_carlo).empty(), CountProblem(kMonteCarloSamples, monte_carlo));
   Require(threads >= 0 && threads <= 4096, "threads must be between 0 (all cores) and 4096");
   ToleranceOptions options;
   options.request.order = order;

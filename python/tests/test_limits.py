@@ -4,6 +4,7 @@ file gets, instead of a run that allocates gigabytes or stops with a misleading 
 import json
 import math
 import os
+import subprocess
 
 import pytest
 
@@ -37,3 +38,20 @@ def test_a_finite_span_within_the_limit_runs(four_bar):
     model = mechkin.load(four_bar)
     motion = model.run(order=0, start=0, end=0.5, steps=10)
     assert motion.complete and len(motion) == 11
+
+
+@pytest.mark.parametrize("command, option, call, value", [
+    ("tolerance", "--monte-carlo", lambda m, v: m.tolerance(monte_carlo=v), 200_000_000),
+    ("tolerance", "--monte-carlo", lambda m, v: m.tolerance(monte_carlo=v), -1),
+    ("range", "--steps", lambda m, v: m.range(steps=v), 3),
+    ("range", "--steps", lambda m, v: m.range(steps=v), 20_000_000),
+])
+def test_counts_are_refused_in_the_same_words_by_the_cli_and_python(cli, root, command, option, call, value):
+    path = os.path.join(root, "mechanisms", "parametric-four-bar.json")
+    proc = subprocess.run([cli, command, path, option, str(value)], capture_output=True, text=True)
+    assert proc.returncode != 0
+    with pytest.raises(ValueError) as py_error:
+        call(mechkin.load(path), value)
+    message = str(py_error.value)
+    assert "must be a whole number from" in message, message
+    assert message in proc.stderr + proc.stdout, (message, proc.stderr)

@@ -138,10 +138,10 @@ TEST(SweepLimits, AGridBeyondTheVariantLimitIsAnArgumentError) {
 
 TEST(SweepLimits, SamplesMonteCarloAndStepsBeyondTheirLimitsAreArgumentErrors) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"sweep " + kSlider + " --samples 100000001", "not in range 1 to 100000000"},
+      {"sweep " + kSlider + " --samples 100000001", "--samples: the sweep's sample count must be a whole number from 1 to 100000000"},
       {"sweep " + kSlider + " --samples 1e12", "--samples"},
-      {"tolerance " + kSlider + " --monte-carlo 100000001", "not in range 0 to 100000000"},
-      {"range " + kSlider + " --steps 10000001", "not in range 4 to 10000000"},
+      {"tolerance " + kSlider + " --monte-carlo 100000001", "--monte-carlo: the Monte-Carlo sample count must be a whole number from 0 to 100000000"},
+      {"range " + kSlider + " --steps 10000001", "--steps: the range's steps per direction must be a whole number from 4 to 10000000"},
   };
   for (const auto& [args, limit] : cases) {
     const Result r = Mechkin(args);

@@ -18,7 +18,7 @@ void SetupRangeCommand(CLI::App& app, RangeCommandOptions* o) {
   cmd->add_option("-o,--output", o->output, "Report file (default: stdout); written atomically");
   cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember(NamesOf<ReportFormat>()));
   cmd->add_option("--steps", o->steps, "Steps per direction (a turn, or the search span; default 360)")
-      ->check(CLI::Range(4, 10000000));
+      ->check(CountCheck(kRangeSteps));
   cmd->add_option("--span", o->span, "Search span of translations and distances, file units (default 4x the size)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--tol", o->tolerance, "Position tolerance (default 1e-10)")->check(ToleranceCheck());

@@ -57,6 +57,16 @@ bool SetTolerance(const std::string& text, RunRequest* r, std::string* why) {
 CLI::Validator OrderCheck() { return RequestCheck(&SetOrder, "in 0..4"); }
 CLI::Validator ToleranceCheck() { return RequestCheck(&SetTolerance, "in [1e-15, 1e-3]"); }
 
+CLI::Validator CountCheck(const CountLimit& limit) {
+  return CLI::Validator(
+      [limit](std::string& text) -> std::string {
+        double v = 0;
+        if (!ReadNumber(text, &v)) return std::string(limit.what) + " must be a whole number, not '" + text + "'";
+        return CountProblem(limit, v);
+      },
+      "in " + std::to_string(limit.low) + ".." + std::to_string(limit.high));
+}
+
 CLI::Option* AddOrderOption(CLI::App* cmd, RunRequest* request, const std::string& description) {
   return cmd->add_option("--order", request->order, description)->check(OrderCheck());
 }

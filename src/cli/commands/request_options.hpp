@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "analysis/count_limits.hpp"
 #include "analysis/run_request.hpp"
 
 namespace mechkin {
@@ -15,6 +16,8 @@ namespace mechkin {
 /// tolerance and RunRequest::IsValid answers (for commands whose options are not a request).
 CLI::Validator OrderCheck();
 CLI::Validator ToleranceCheck();
+/// A count's check (analysis/count_limits.hpp): the message Python gives for the same value.
+CLI::Validator CountCheck(const CountLimit& limit);
 /// --order into `request->order`, checked by RunRequest::IsValid.
 CLI::Option* AddOrderOption(CLI::App* cmd, RunRequest* request, const std::string& description);
 /// --tol into `request->tolerance`, checked by RunRequest::IsValid.

@@ -17,7 +17,7 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
       ->check(CLI::IsMember({"csv", "json"}));
   cmd->add_option("--grid", o->grid, "NAME=FROM:TO:COUNT, repeatable: the grid of all combinations (at most 1e8)");
   cmd->add_option("--samples", o->samples, "N variants uniform within the parameters' min/max")
-      ->check(CLI::Range(1, 100000000));
+      ->check(CountCheck(kSweepSamples));
   cmd->add_option("--seed", o->seed, "Seed of --samples (default 1)");
   cmd->add_option("--shard", o->shard, "i/N: run the variants with index = i-1 (mod N), for job arrays");
   cmd->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::Range(0, 4096));

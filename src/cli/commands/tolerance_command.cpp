@@ -18,7 +18,7 @@ void SetupToleranceCommand(CLI::App& app, ToleranceCommandOptions* o) {
   cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember(NamesOf<ReportFormat>()));
   AddOrderOption(cmd, &o->request, "Derivative orders of the outputs analysed (default 0: positions)");
   cmd->add_option("--monte-carlo", o->monte_carlo, "Also sample N variants uniformly within the tolerances")
-      ->check(CLI::Range(0, 100000000));
+      ->check(CountCheck(kMonteCarloSamples));
   cmd->add_option("--seed", o->seed, "Seed of the Monte-Carlo samples (default 1)");
   cmd->add_option("--threads", o->threads, "Threads for the Monte-Carlo runs (default: all cores)")
       ->check(CLI::Range(0, 4096));
