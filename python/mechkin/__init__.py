@@ -478,5 +478,18 @@ def sweep(model, variants, client=None, order=1, tol=1e-10, threads=None):
         import concurrent.futures
         import os
         with concurrent.futures.ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
-            summaries = list(pool.map(lambda v: _run_variant(model, v, order, tol), variants))
+            futures = [pool.submit(_run_variant, model, v, order, tol) for v in variants]
+            try:
+                summaries = [f.result() for f in futures]
+            except KeyboardInterrupt:
+                # Ctrl-C reaches this (main) thread: the queued variants are dropped and the
+                # running ones stop at their next step before the interrupt goes on.
+                for f in futures:
+                    f.cancel()
+                _mechkin.stop_all(True)
+                try:
+                    concurrent.futures.wait(futures)
+                finally:
+                    _mechkin.stop_all(False)
+                raise
     return _sweep_frame(model, variants, summaries, order)

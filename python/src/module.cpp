@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "analysis/check_report.hpp"
+#include "analysis/count_limits.hpp"
 #include "analysis/enum_names.hpp"
 #include "analysis/motion.hpp"
 #include "analysis/range.hpp"
@@ -23,6 +24,7 @@
 #include "io/tolerance_report_writer.hpp"
 #include "analysis/load.hpp"
 #include "check_report_binding.hpp"
+#include "interrupt_binding.hpp"
 #include "request_binding.hpp"
 
 namespace py = pybind11;
@@ -110,7 +112,7 @@ void ValidateOrderAndTolerance(int order, double tol) {
 
 // `mechkin range`: (report dict, text).
 py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int steps, double span, double tol) {
-  Require(steps >= 4 && steps <= 10000000, "steps must be between 4 and 10000000");
+  Require(CountProblem(kRangeSteps, steps).empty(), CountProblem(kRangeSteps, steps));
   Require(span >= 0 && std::isfinite(span), "span must be a positive length in file units (0: 4 x the mechanism's size)");
   ValidateOrderAndTolerance(0, tol);
   RangeOptions options;
@@ -119,10 +121,13 @@ py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int step
   options.span = span;
   options.tolerance = tol;
   RangeReport report;
+  const PythonInterrupt interrupt;
+  options.interrupted = interrupt.Poll();
   {
     py::gil_scoped_release release;
     report = CalcRange(*m.model, options);
   }
+  interrupt.RethrowIfRaised();
   return ReportAndText(report, &RangeReportJsonText, &PrintRangeReport);
 }
 
@@ -130,7 +135,7 @@ py::tuple RangeOfModel(const LoadedModel& m, const std::string& driver, int step
 py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, unsigned long seed, int threads,
                            double tol) {
   ValidateOrderAndTolerance(order, tol);
-  Require(monte_carlo >= 0 && monte_carlo <= 100000000, "monte_carlo must be between 0 and 100000000");
+  Require(CountProblem(kMonteCarloSamples, monte_carlo).empty(), CountProblem(kMonteCarloSamples, monte_carlo));
   Require(threads >= 0 && threads <= 4096, "threads must be between 0 (all cores) and 4096");
   ToleranceOptions options;
   options.request.order = order;
@@ -139,10 +144,13 @@ py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, uns
   options.seed = seed;
   options.threads = threads;
   ToleranceReport report;
+  const PythonInterrupt interrupt;
+  options.request.interrupted = interrupt.Poll();
   {
     py::gil_scoped_release release;
     report = AnalyzeTolerances(*m.model, options);
   }
+  interrupt.RethrowIfRaised();
   return ReportAndText(report, &ToleranceReportJsonText, &PrintToleranceReport);
 }
 
@@ -174,8 +182,9 @@ std::shared_ptr<const Model> WithSpan(const std::shared_ptr<const Model>& model,
   if (start) copy->analysis->start = *start;
   if (end) copy->analysis->end = *end;
   if (steps) copy->analysis->steps = *steps;
-  if (!(copy->analysis->end > copy->analysis->start) || copy->analysis->steps < 1)
-    throw py::value_error("need end > start and steps >= 1");
+  // The file's own limits and messages (model/model.hpp SpanProblem): steps=10**8 or end=inf are refused here.
+  const std::string why = SpanProblem(copy->analysis->start, copy->analysis->end, copy->analysis->steps);
+  if (!why.empty()) throw py::value_error(why);
   return copy;
 }
 
@@ -196,10 +205,13 @@ std::shared_ptr<PyMotion> RunModel(const LoadedModel& m, RunRequest request, std
   }
   auto out = std::make_shared<PyMotion>();
   out->model = model;
+  const PythonInterrupt interrupt;
+  plan.analysis.interrupted = interrupt.Poll();
   {
     py::gil_scoped_release release;
     out->motion = std::make_unique<Motion>(RunPlanned(*model, plan));
   }
+  interrupt.RethrowIfRaised();
   return out;
 }
 
@@ -307,10 +319,13 @@ py::dict RunVariantSummary(const LoadedModel& lm, const ParameterOverrides& valu
   options.request.order = order;
   options.request.tolerance = tol;
   VariantSummary v;
+  const PythonInterrupt interrupt;
+  options.request.interrupted = interrupt.Poll();
   {
     py::gil_scoped_release release;
     v = RunVariant(*lm.model, values, options);
   }
+  interrupt.RethrowIfRaised();
   py::dict d, params;
   for (const auto& kv : values) params[py::str(kv.first)] = kv.second;
   d["parameters"] = params;
@@ -387,6 +402,8 @@ PYBIND11_MODULE(_mechkin, mod) {
   mod.doc() = "mechkin core (C++); use the `mechkin` package";
   BindRunRequest(mod);
   BindCheckReport(mod);
+  mod.def("stop_all", [](bool stop) { StopAllFlag() = stop; },
+          "While true, every running call of the core stops at its next step (a sweep's pool on Ctrl-C)");
   py::class_<LoadedModel, std::shared_ptr<LoadedModel>>(mod, "CoreModel", "A compiled model (mechkin.Model wraps it)")
       .def_readonly("text", &LoadedModel::text)
       .def_readonly("source", &LoadedModel::source)

@@ -498,3 +498,31 @@ def test_bounds_and_plane_of_a_turning_bar(cli, tmp_path):
     assert np.allclose(data["bounds"]["hi"], [1, 1, 0], atol=1e-9)
     assert np.allclose(np.abs(data["planar"]), [0, 0, 1], atol=1e-9)
     assert data["plots"] == [["tip.x", "tip.y"]]  # the output, without its constant z
+
+
+def test_a_comment_opener_in_the_name_does_not_stop_the_page(cli, tmp_path):
+    # "<!--<script>" in a script puts the HTML parser in its double-escaped state, where
+    # the script's own end tag no longer ends it: the page never loaded (issue 24).
+    doc = json.load(open(os.path.join(ROOT, "mechanisms", "planar-four-bar.json")))
+    doc["name"] = "<!--<script>"
+    path = tmp_path / "evil.json"
+    path.write_text(json.dumps(doc))
+    page = tmp_path / "evil.html"
+    assert view(cli, str(path), page).returncode == 0
+    html = page.read_text()
+    data = html[html.index("window.MECHKIN_DATA="):]
+    data = data[:data.index("</script>")]
+    assert "<" not in data  # every '<' of the file's text is \u003c inside the data
+    attrs, dom = browser.dump_dom(page, "t=0.1")
+    assert attrs.get("data-ready") == "1", dom[-2000:]
+    assert "data-errors" not in attrs, attrs.get("data-errors")
+    assert "&lt;!--&lt;script&gt;" in dom  # the title shows the name as text
+
+
+def test_a_probe_of_no_body_is_reported_and_the_page_still_loads(cli, tmp_path):
+    page = tmp_path / "probe.html"
+    assert view(cli, os.path.join(ROOT, "mechanisms", "planar-four-bar.json"), page).returncode == 0
+    attrs, dom = browser.dump_dom(page, "probe=99999")
+    assert attrs.get("data-ready") == "1", dom[-2000:]
+    assert "#probe=99999: no body with that index" in attrs.get("data-errors", ""), attrs
+    assert "data-probe" not in attrs

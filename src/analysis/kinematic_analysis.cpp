@@ -522,6 +522,11 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       rep->message = "stopped by the caller";
       return;
     }
+    if (options_.interrupted && options_.interrupted()) {
+      rep->stop = StopKind::Interrupted;
+      rep->message = "interrupted";
+      return;
+    }
     prev_ = s_;
   }
   rep->complete = true;

@@ -29,6 +29,12 @@ std::string ToleranceProblem(const std::string& shown);
 constexpr double kMinTolerance = 1e-15;  // below: under the round-off of the scaled residual
 constexpr double kMaxTolerance = 1e-3;   // above: the branch guard's steps stop being reliable
 
+/// Asked between steps (and between the runs of a sweep or Monte-Carlo): true stops
+/// the work as StopKind::Interrupted. The front end decides what it means (the CLI:
+/// a SIGINT with --keep-partial; Python: a pending KeyboardInterrupt); it must be
+/// cheap and safe to call from every thread. Empty: never interrupted.
+using InterruptPoll = std::function<bool()>;
+
 // The solver's settings of one run. Front ends do not fill these: they build a
 // RunRequest (analysis/run_request.hpp) whose PlanRun decides them, the solved
 // order included (raised for forces).
@@ -56,6 +62,7 @@ struct AnalysisOptions {
   // Joint limits (analysis/joint_limits.hpp): a crossing is located and noted and the
   // run goes on (`--on-limit report`); false: the run stops there.
   bool on_limit_report = false;
+  InterruptPoll interrupted;  // polled once per step (empty: never)
   bool IsValid(std::string* error) const;
 };
 

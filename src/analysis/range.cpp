@@ -29,35 +29,43 @@ RangeEnd Sweep(const Model& model, int d, double sign, double span, const RangeO
   AnalysisOptions a;
   a.order = 1;
   a.tolerance = options.tolerance;
-  a.keep_step_diagnostics = true;
-  TableOptions table;
-  table.order = 1;
-  table.all_outputs = false;
-  const Motion motion = RunMotion(m, a, table);
+  a.keep_step_diagnostics = false;
+  a.interrupted = options.interrupted;
   const double to_file = 1 / (IsAngleDriver(model.drivers[d]) ? model.units.angle_to_si : model.units.length_to_si);
   const double v0 = DesignDriverValue(model, model.drivers[d]);
-  for (const auto& st : motion.report.steps)
+  // Only what the range reads, step by step: the largest condition and the last row's
+  // time (the whole table and every step's diagnostics took > 1 GB at --steps 1e7).
+  double last_t = 0;
+  int rows = 0;
+  const AnalysisReport report = RunKinematicAnalysis(m, a, [&](const SystemState&, const StepDiagnostics& st) {
     if (st.condition > out->max_condition)
       out->max_condition = st.condition, out->value_at_max_condition = (v0 + sign * span * st.t) * to_file;
+    last_t = st.t;
+    ++rows;
+    return true;
+  });
+  const MotionStop stop = StopOf(report);
   RangeEnd end;
-  if (motion.complete) {
+  if (report.stop == StopKind::Interrupted) {
+    end.kind = "interrupted";  // not reported: CalcRange ends the report before this driver
+  } else if (report.complete) {
     end.kind = IsAngleDriver(model.drivers[d]) ? "full turn" : "open";
     end.value = (v0 + sign * span) * to_file;
-  } else if (motion.report.stop == StopKind::JointLimit && !motion.report.joint_limits.empty()) {
+  } else if (report.stop == StopKind::JointLimit && !report.joint_limits.empty()) {
     // A joint's limits end the interval where the run located the crossing.
     end.kind = "joint limit";
-    end.value = motion.report.joint_limits.front().driver_values[d] * to_file;
-  } else if (motion.report.limit && motion.report.limit->fold) {
+    end.value = report.joint_limits.front().driver_values[d] * to_file;
+  } else if (report.limit && report.limit->fold) {
     end.kind = "limit";
-    end.value = motion.report.limit->driver_values[d] * to_file;
-  } else if (motion.report.singular) {
+    end.value = report.limit->driver_values[d] * to_file;
+  } else if (report.singular) {
     end.kind = "branch point";
-    end.value = motion.report.singular->driver_values[d] * to_file;
+    end.value = report.singular->driver_values[d] * to_file;
   } else {
     end.kind = "failed";
-    end.value = motion.rows() > 0 ? (v0 + sign * span * motion.at(motion.rows() - 1, 0)) * to_file : v0 * to_file;
+    end.value = rows > 0 ? (v0 + sign * span * last_t) * to_file : v0 * to_file;
   }
-  end.message = motion.complete ? "" : motion.stop.Summary();
+  end.message = report.complete ? "" : stop.Summary();
   return end;
 }
 
@@ -81,8 +89,15 @@ RangeReport CalcRange(const Model& model, const RangeOptions& options) {
                                                          : 4 * model.characteristic_length);
     r.upper = Sweep(model, static_cast<int>(d), 1, span, options, &r);
     if (r.upper.kind == "full turn") r.lower = r.upper, r.lower.value = r.design_value - (r.upper.value - r.design_value);
-    else r.lower = Sweep(model, static_cast<int>(d), -1, span, options, &r);
+    else if (r.upper.kind != "interrupted") r.lower = Sweep(model, static_cast<int>(d), -1, span, options, &r);
+    rep.interrupted = r.upper.kind == "interrupted" || r.lower.kind == "interrupted";
+    if (rep.interrupted) break;
     rep.drivers.push_back(r);
+  }
+  if (rep.interrupted) {
+    rep.ok = true;
+    rep.message = "interrupted";
+    return rep;
   }
   if (rep.drivers.empty()) {
     std::string names;

@@ -36,12 +36,14 @@ struct RangeOptions {
   int steps = 360;        // per direction: per turn for rotations, over the search span otherwise
   double span = 0;        // search span of non-rotation drivers (file units); 0: 4 × the mechanism's size
   double tolerance = 1e-10;
+  InterruptPoll interrupted;  // polled between steps: true ends the report with the drivers done
 };
 
 struct RangeReport {
   bool ok = false;
   std::string message;
   std::vector<DriverRange> drivers;
+  bool interrupted = false;  // stopped by RangeOptions::interrupted: `drivers` are those done before
 };
 
 RangeReport CalcRange(const Model& model, const RangeOptions& options);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <stdexcept>
 
 namespace mechkin {
@@ -24,6 +25,13 @@ std::string RunRequest::OrderProblem(const std::string& shown) { return mechkin:
 std::string RunRequest::ToleranceProblem(const std::string& shown) { return mechkin::ToleranceProblem(shown); }
 
 bool RunRequest::IsValid(std::string* why) const {
+  // A parameter named twice would give two identical column sets with one header.
+  std::set<std::string> seen;
+  for (const std::string& p : sensitivity)
+    if (!seen.insert(p).second) {
+      *why = "sensitivity: parameter '" + p + "' is given twice: name each parameter once";
+      return false;
+    }
   return CheckSolverFields(order, tolerance, max_iterations, predictor_order, !sensitivity.empty(), formulation,
                            solver, why);
 }
@@ -69,6 +77,7 @@ RunPlan PlanRun(const Model& model, const RunRequest& r) {
   a.predictor_order = r.predictor_order;
   a.keep_step_diagnostics = r.keep_step_diagnostics;
   a.on_limit_report = r.on_limit_report;
+  a.interrupted = r.interrupted;
   DecideComputation(model, &plan);
   return plan;
 }

@@ -51,6 +51,7 @@ struct RunRequest {
   bool on_limit_report = false;       // joint limits: note a crossing and go on (default: stop there)
   LimitAction limit_action() const { return on_limit_report ? LimitAction::Report : LimitAction::Stop; }
   void set_limit_action(LimitAction a) { on_limit_report = a == LimitAction::Report; }
+  InterruptPoll interrupted;          // polled between steps and runs: true stops (Interrupted)
 
   // The ranges (kMinTolerance, kMaxTolerance, order 0..kMaxOrder) and their messages are
   // the solver's (CheckSolverFields, analysis/kinematic_analysis.hpp): one definition.

@@ -240,10 +240,23 @@ SweepResult RunSweepShard(const Model& model, const ShardVariants& shard, const 
   if (!options.request.IsValid(&why)) throw std::invalid_argument(why);
   result.columns = SweepColumns(model, options.request.order);
   result.variants.resize(shard.indices.size());
+  std::vector<char> finished(shard.indices.size(), 0);
   ParallelFor(static_cast<int>(shard.indices.size()), options.threads, [&](int k, int) {
-    result.variants[k] = RunVariant(model, shard.variants[k], options);
+    VariantSummary v = RunVariant(model, shard.variants[k], options);
+    if (v.status == "interrupted") return;  // a summary of part of the motion: not reported
+    result.variants[k] = std::move(v);
     result.variants[k].index = shard.indices[k];
-  });
+    finished[k] = 1;
+  }, options.request.interrupted);
+  // Interrupted: the report keeps the variants that finished, in index order.
+  size_t kept = 0;
+  for (size_t k = 0; k < finished.size(); ++k)
+    if (finished[k]) {
+      if (kept != k) result.variants[kept] = std::move(result.variants[k]);  // never onto itself
+      ++kept;
+    }
+  result.interrupted = kept < finished.size();
+  result.variants.resize(kept);
   return result;
 }
 

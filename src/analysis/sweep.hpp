@@ -84,6 +84,9 @@ struct SweepResult {
   // Which sweep this is (the CLI's shards: file hash, variants, overrides, run settings),
   // as JSON text written and compared by `sweep --merge`; empty: not recorded.
   std::string identity;
+  // Stopped by options.request.interrupted: `variants` holds the ones that finished
+  // (fewer than the shard's share), the report is partial.
+  bool interrupted = false;
 };
 
 /// Runs the shard's variants on the threads. Throws std::invalid_argument for an

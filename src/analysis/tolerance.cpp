@@ -81,6 +81,7 @@ void RunSample(const Model& model, const ParameterOverrides& set, const Motion& 
     return;
   }
   const Motion m = RunMotion(*variant.model, OutputRequest(model, options.request, {}));
+  if (m.stop.kind == StopKind::Interrupted) return;  // neither run nor failed: not counted
   if (!m.complete || m.rows() != nominal.rows()) {
     ++acc->failed;
     return;
@@ -99,16 +100,26 @@ void RunSample(const Model& model, const ParameterOverrides& set, const Motion& 
   }
 }
 
-void MonteCarlo(const Model& model, const Motion& nominal, const std::vector<int>& cols,
-                const ToleranceOptions& options, ToleranceReport* rep) {
-  // The samples are drawn up front in one sequence: the same seed gives the same
-  // variants whatever the number of threads.
+// The samples are one seeded sequence (every parameter of sample 0, then of sample
+// 1, ...): the same seed gives the same variants whatever the number of threads.
+// Each chunk draws its own from the generator's state at its first sample, so the
+// memory follows the chunks, not N (drawn up front, --monte-carlo 1e8 held 1e8 variants).
+std::vector<std::mt19937_64> ChunkGenerators(const ToleranceOptions& options, size_t parameters, int chunks) {
   std::mt19937_64 rng(options.seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  std::vector<ParameterOverrides> samples(options.monte_carlo);
-  for (auto& s : samples)
-    for (size_t p = 0; p < rep->parameters.size(); ++p)
-      s[rep->parameters[p]] = model.FindParameter(rep->parameters[p])->value + unit(rng) * rep->tolerances[p];
+  std::vector<std::mt19937_64> at_chunk;
+  for (int c = 0; c < chunks; ++c) {
+    at_chunk.push_back(rng);
+    const long long first = static_cast<long long>(options.monte_carlo) * c / chunks;
+    const long long last = static_cast<long long>(options.monte_carlo) * (c + 1) / chunks;
+    for (long long draw = first * static_cast<long long>(parameters); draw < last * static_cast<long long>(parameters); ++draw)
+      unit(rng);
+  }
+  return at_chunk;
+}
+
+void MonteCarlo(const Model& model, const Motion& nominal, const std::vector<int>& cols,
+                const ToleranceOptions& options, ToleranceReport* rep) {
   // Sums in a fixed order: the samples fall into kMonteCarloChunks fixed runs of
   // consecutive samples, each summed in sample order, and the chunks are added in
   // chunk order, so the report is the same to the last bit whatever the number of
@@ -117,11 +128,19 @@ void MonteCarlo(const Model& model, const Motion& nominal, const std::vector<int
   const int chunks = std::min(options.monte_carlo, kMonteCarloChunks);
   std::vector<MonteCarloSums> acc(chunks, MonteCarloSums{std::vector<double>(cells), std::vector<double>(cells),
                                                          std::vector<double>(cells), 0, 0});
+  const auto first_of = [&](int c) { return static_cast<int>(static_cast<long long>(options.monte_carlo) * c / chunks); };
+  const std::vector<std::mt19937_64> chunk_rng = ChunkGenerators(options, rep->parameters.size(), chunks);
   ParallelFor(chunks, options.threads, [&](int c, int) {
-    const int first = static_cast<int>(static_cast<long long>(options.monte_carlo) * c / chunks);
-    const int last = static_cast<int>(static_cast<long long>(options.monte_carlo) * (c + 1) / chunks);
-    for (int i = first; i < last; ++i) RunSample(model, samples[i], nominal, cols, options, &acc[c]);
-  });
+    std::mt19937_64 rng = chunk_rng[c];
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    ParameterOverrides sample;
+    const InterruptPoll& interrupted = options.request.interrupted;
+    for (int i = first_of(c); i < first_of(c + 1) && !(interrupted && interrupted()); ++i) {
+      for (size_t p = 0; p < rep->parameters.size(); ++p)
+        sample[rep->parameters[p]] = model.FindParameter(rep->parameters[p])->value + unit(rng) * rep->tolerances[p];
+      RunSample(model, sample, nominal, cols, options, &acc[c]);
+    }
+  }, options.request.interrupted);
   MonteCarloSums total = acc[0];
   for (int c = 1; c < chunks; ++c) {
     for (size_t i = 0; i < cells; ++i) {
@@ -134,6 +153,7 @@ void MonteCarlo(const Model& model, const Motion& nominal, const std::vector<int
   }
   rep->samples = total.runs;
   rep->failed_samples = total.failed;
+  rep->interrupted = total.runs + total.failed < options.monte_carlo;
   const int rows = nominal.rows();
   for (size_t k = 0; k < cols.size() && total.runs > 1; ++k) {
     ToleranceColumn& tc = rep->columns[k];
@@ -165,6 +185,7 @@ ToleranceReport AnalyzeTolerances(const Model& model, const ToleranceOptions& op
   if (!nominal_request.IsValid(&rep.message)) return rep;
   const Motion nominal = RunMotion(model, nominal_request);
   if (!nominal.complete) {
+    rep.interrupted = nominal.stop.kind == StopKind::Interrupted;
     rep.message = "the nominal run did not complete: " + nominal.stop.message;
     return rep;
   }
@@ -172,6 +193,14 @@ ToleranceReport AnalyzeTolerances(const Model& model, const ToleranceOptions& op
   const std::vector<int> cols = ValueColumns(nominal);
   for (int c : cols) rep.columns.push_back(LinearStack(nominal, c, rep));
   if (options.monte_carlo > 0) MonteCarlo(model, nominal, cols, options, &rep);
+  if (options.monte_carlo > 0 && rep.samples == 0 && !rep.interrupted) {
+    // No sample to compare with the nominal motion: a "largest deviation 0" would read as a pass.
+    rep.message = "every one of the " + std::to_string(rep.failed_samples) +
+                  " Monte-Carlo samples failed (the variant did not compile or did not run the whole motion), so "
+                  "there is no Monte-Carlo check: compare the tolerances with the mechanism's range (mechkin "
+                  "range), or run without --monte-carlo for the linear estimate";
+    return rep;
+  }
   rep.ok = true;
   return rep;
 }

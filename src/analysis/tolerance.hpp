@@ -59,6 +59,10 @@ struct ToleranceReport {
   std::vector<ToleranceColumn> columns;
   int samples = 0, failed_samples = 0;  // Monte-Carlo variants run / that did not complete
   unsigned long seed = 0;
+  // Stopped by options.request.interrupted: the Monte-Carlo figures are those of the
+  // samples that finished (samples + failed_samples < the N asked for), or — before
+  // the nominal run completed — no report (ok false).
+  bool interrupted = false;
 };
 
 /// The stack-up over the parameters that declare a tolerance (an invalid

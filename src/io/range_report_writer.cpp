@@ -28,6 +28,7 @@ std::string EndText(const RangeEnd& e, const std::string& unit) {
 
 nlohmann::json RangeReportJson(const RangeReport& r) {
   nlohmann::json j = {{"mechkin_range", 1}, {"ok", r.ok}};
+  if (r.interrupted) j["partial"] = true, j["note"] = "interrupted";
   if (!r.ok) j["message"] = r.message;
   j["drivers"] = nlohmann::json::array();
   for (const auto& d : r.drivers)
@@ -38,6 +39,7 @@ nlohmann::json RangeReportJson(const RangeReport& r) {
 }
 
 void PrintRangeReport(const RangeReport& r, std::ostream& out) {
+  if (r.interrupted) out << "# PARTIAL REPORT: interrupted; " << r.drivers.size() << " drivers done\n";
   if (!r.ok) {
     out << "range: " << r.message << "\n";
     return;

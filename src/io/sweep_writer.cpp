@@ -177,6 +177,13 @@ bool EveryVariantOnce(const SweepResult& merged, std::string* error) {
 
 }  // namespace
 
+// The first line of an interrupted sweep's report (as a partial run table's "# PARTIAL TABLE:").
+std::string PartialNote(const SweepResult& r) {
+  const int share = r.total / r.shards + (r.total % r.shards > r.shard - 1 ? 1 : 0);
+  return "interrupted; " + std::to_string(r.variants.size()) + " of " + std::to_string(share) +
+         " variants summarised";
+}
+
 json SweepJson(const SweepResult& r) {
   json variants = json::array();
   for (const auto& v : r.variants) {
@@ -191,11 +198,13 @@ json SweepJson(const SweepResult& r) {
   json doc = {{"mechkin_sweep", 1}, {"parameters", r.parameters}, {"columns", r.columns}, {"total", r.total},
               {"shard", r.shard}, {"shards", r.shards}, {"variants", variants}};
   if (!r.identity.empty()) doc["sweep"] = json::parse(r.identity);
+  if (r.interrupted) doc["partial"] = true, doc["note"] = PartialNote(r);
   return doc;
 }
 
 std::string SweepCsv(const SweepResult& r) {
   std::ostringstream out;
+  if (r.interrupted) out << "# PARTIAL SWEEP: " << PartialNote(r) << "\n";
   out << "variant";
   for (const auto& p : r.parameters) out << "," << p;
   out << ",status,rows,t_stop [s],max_condition,t_max_condition [s]";
@@ -217,6 +226,11 @@ bool MergeSweepFiles(const std::vector<std::string>& files, SweepResult* merged,
   for (size_t f = 0; f < files.size(); ++f) {
     json doc;
     if (!ReadShard(files[f], &doc, error)) return false;
+    if (doc.contains("partial") && doc["partial"] == true) {
+      const std::string note = doc.contains("note") && doc["note"].is_string() ? doc["note"].get<std::string>() : "";
+      *error = "'" + files[f] + "' is a partial shard (" + note + "): run that shard again to the end, then merge";
+      return false;
+    }
     SweepResult part;
     int shard = 0;
     try {

@@ -19,6 +19,7 @@ std::string Header(const ToleranceColumn& c) { return c.unit.empty() ? c.name : 
 nlohmann::json ToleranceReportJson(const ToleranceReport& r) {
   using nlohmann::json;
   json j = {{"mechkin_tolerance", 1}, {"ok", r.ok}};
+  if (r.interrupted) j["partial"] = true, j["note"] = "interrupted";
   if (!r.ok) {
     j["message"] = r.message;
     return j;
@@ -50,6 +51,8 @@ nlohmann::json ToleranceReportJson(const ToleranceReport& r) {
 }
 
 void PrintToleranceReport(const ToleranceReport& r, std::ostream& out) {
+  if (r.interrupted)
+    out << "# PARTIAL REPORT: interrupted; " << r.samples + r.failed_samples << " Monte-Carlo samples finished\n";
   if (!r.ok) {
     out << "tolerance: " << r.message << "\n";
     return;

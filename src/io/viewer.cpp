@@ -387,6 +387,20 @@ std::string ScriptSafe(std::string s) {
   return s;
 }
 
+// The scene's JSON inside its <script>: every '<' (only inside JSON strings) as
+// \u003c, so no text of the file ("</script>", "<!--<script>", which puts the HTML
+// parser in its double-escaped state where the script's own end tag no longer ends
+// it) reaches the parser as markup.
+std::string JsonScriptSafe(const std::string& json) {
+  std::string out;
+  out.reserve(json.size());
+  for (char c : json) {
+    if (c == '<') out += "\\u003c";
+    else out += c;
+  }
+  return out;
+}
+
 const char kPageHead[] = R"HTML(<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width">
 <title>)HTML";
@@ -482,7 +496,7 @@ bool WriteViewerHtml(const Model& model, const Motion& motion, const SceneOption
              "(function(){var f=console.error;console.error=function(){MECHKIN_ERRORS.push(Array.prototype.join.call(arguments,' '));"
              "f.apply(console,arguments);};})();</script>\n");
   file.Write("<script>" + ScriptSafe(three) + "</script>\n<script>" + ScriptSafe(orbit) + "</script>\n");
-  file.Write("<script>window.MECHKIN_DATA=" + ScriptSafe(SceneData(model, motion, options)) + ";</script>\n");
+  file.Write("<script>window.MECHKIN_DATA=" + JsonScriptSafe(SceneData(model, motion, options)) + ";</script>\n");
   file.Write("<script>document.getElementById('title').textContent=window.MECHKIN_DATA.name;</script>\n");
   file.Write("<script>" + ScriptSafe(kViewerJs) + "</script>\n</body></html>\n");
   return file.Commit("", error);

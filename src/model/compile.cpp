@@ -44,6 +44,7 @@ std::optional<Model> Compiler::Run() {
   WarnOddLengths();
   WarnStrayJointPoints();
   CheckDriverSpans();
+  CheckLoadSpans();
   if (out_.has_errors()) return std::nullopt;
   model_.expressions = expressions_;
   return std::move(model_);
@@ -288,8 +289,8 @@ void Compiler::CompileAnalysis() {
   auto n = Integer(a.steps, "steps");
   if (s && e && !(*e > *s)) Error("/analysis/end", "'end' must be greater than 'start'", "set end > start");
   if (n && *n < 1) Error("/analysis/steps", "'steps' must be at least 1", "give the number of intervals (rows = steps + 1)");
-  if (n && *n > 10000000) Error("/analysis/steps", "'steps' is larger than 10,000,000", "use fewer steps");
-  if (s && e && n && *e > *s && *n >= 1 && *n <= 10000000) model_.analysis = Analysis{*s, *e, *n, {}, {}};
+  if (n && *n > kMaxSteps) Error("/analysis/steps", SpanProblem(0, 1, *n), "use fewer steps");
+  if (s && e && n && SpanProblem(*s, *e, *n).empty()) model_.analysis = Analysis{*s, *e, *n, {}, {}};
   if (a.branch && model_.analysis) CompileBranch(*a.branch, &*model_.analysis);
 }
 
@@ -300,7 +301,19 @@ void Compiler::CompileBranch(const BranchSpec& b, Analysis* an) {
     const auto joint = BranchJoint(name, value.pointer);
     if (!joint) continue;
     const JointType t = model_.joints[*joint].type;
-    if (auto v = Value(value)) an->branch_joints.emplace_back(*joint, *v * (t == JointType::Revolute ? angle_ : length_));
+    const auto v = Value(value);
+    if (!v) continue;
+    // A hint beyond one turn (or beyond the coordinates' 1e12 m) names no branch the
+    // assembly can compare with: 1e308 was silently ignored.
+    const bool turn = t == JointType::Revolute;
+    const double si = *v * (turn ? angle_ : length_);
+    if (!(std::abs(si) <= (turn ? 2 * M_PI * (1 + 1e-12) : kMaxCoordinate))) {
+      Error(value.pointer, "branch hint " + FormatNumber(*v) + " " + (turn ? model_.units.angle_name : model_.units.length_name) +
+                               (turn ? " is more than one turn from the design pose" : " is beyond 1e12 m"),
+            turn ? "give the joint's angle from the design pose within one turn (360 deg)" : "check the number and its unit");
+      continue;
+    }
+    an->branch_joints.emplace_back(*joint, si);
   }
   for (const auto& [name, p] : b.flip)
     if (auto j = BranchJoint(name, p)) an->branch_flips.push_back(*j);

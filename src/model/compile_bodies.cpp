@@ -109,6 +109,14 @@ std::optional<Inertia> Compiler::CompileInertia(const InertiaSpec& in, const Vec
   auto mass = Value(in.mass);
   auto center = LengthVector(in.center);
   if (mass && !(*mass > 0)) Error(ptr + "/mass", "mass must be positive", "give the body's mass in units/mass");
+  // Beyond 1e15 kg the inverse dynamics (m·a, m·L² with lengths up to 1e12 m) leaves
+  // the doubles' range: a mass of 1e308 gave NaN efforts and exit 0.
+  constexpr double kMaxMass = 1e15;  // kg
+  if (mass && *mass * model_.units.mass_to_si > kMaxMass) {
+    Error(ptr + "/mass", "mass " + FormatNumber(*mass) + " " + model_.units.mass_name + " is beyond 1e15 kg",
+          "check the number and the mass unit");
+    return std::nullopt;
+  }
   if (!mass || !(*mass > 0) || !center) return std::nullopt;
   const Mat3 A = CalcA(euler);
   out.mass = *mass * model_.units.mass_to_si;

@@ -131,4 +131,33 @@ void Compiler::CheckDriverSpans() {
   }
 }
 
+// Every force and torque component over the analysis span, on the grid of
+// CheckDriverSpans: a component undefined or not finite at a row's time stops a run
+// with forces there ("division by zero" and no place), so the file is refused here.
+void Compiler::CheckLoadSpans() {
+  if (!model_.analysis || model_.loads.size() != spec_.loads.size()) return;
+  const Analysis& an = *model_.analysis;
+  const int points = std::min(an.steps, 2000);
+  for (size_t l = 0; l < model_.loads.size(); ++l) {
+    const Load& load = model_.loads[l];
+    if (load.kind == LoadKind::Spring) continue;
+    for (int c = 0; c < 3; ++c) {
+      std::string why;
+      double t = an.start;
+      for (int k = 0; k <= points && why.empty(); ++k) {
+        t = k == points ? an.end : an.start + (an.end - an.start) * k / points;
+        try {
+          if (!std::isfinite(load.components[c].Eval(t).c[0])) why = "its value is not finite";
+        } catch (const std::exception& e) {
+          why = e.what();
+        }
+      }
+      if (!why.empty())
+        Error(spec_.loads[l].pointer + "/components/" + std::to_string(c),
+              "load '" + load.name + "' cannot be evaluated at t = " + FormatNumber(t) + " s of the analysis span: " + why,
+              "change the expression, or start or end the analysis where it is defined");
+    }
+  }
+}
+
 }  // namespace mechkin

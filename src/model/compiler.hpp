@@ -142,6 +142,7 @@ class Compiler {
   void WarnStrayJointPoints();
   void WarnOddLengths();
   void CheckDriverSpans();
+  void CheckLoadSpans();
 
   // Frames of the design pose.
   std::pair<Vec3, Mat3> Pose(BodyIndex b) const {

@@ -1,5 +1,7 @@
 #include "model/model.hpp"
 
+#include <cmath>
+
 namespace mechkin {
 
 int EquationsRemoved(JointType type) {
@@ -48,6 +50,14 @@ const Parameter* Model::FindParameter(const std::string& name) const {
   for (const auto& p : parameters)
     if (p.name == name) return &p;
   return nullptr;
+}
+
+std::string SpanProblem(double start, double end, double steps) {
+  if (!std::isfinite(start) || !std::isfinite(end)) return "'start' and 'end' must be finite times in seconds";
+  if (!(end > start)) return "'end' must be greater than 'start'";
+  if (!(steps >= 1)) return "'steps' must be at least 1";
+  if (steps > kMaxSteps) return "'steps' is larger than 10,000,000";
+  return "";
 }
 
 }  // namespace mechkin

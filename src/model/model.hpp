@@ -161,6 +161,13 @@ struct Output {
   std::string sequence;
 };
 
+/// Rows a run computes at most (steps + 1): the file's /analysis/steps and every
+/// front end that replaces the span (Python run(steps=)) stop here.
+constexpr int kMaxSteps = 10000000;
+/// What is wrong with a span, or "" when it is valid: one message for the file's
+/// /analysis and Python's run(start=, end=, steps=) ("'steps' is larger than 10,000,000").
+std::string SpanProblem(double start, double end, double steps);
+
 struct Analysis {
   double start = 0, end = 1;
   int steps = 100;

@@ -13,27 +13,15 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli_runner.hpp"
+
 namespace {
 
 using nlohmann::json;
-const std::string kBin = MECHKIN_BINARY;
 const std::string kSlider = std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-slider-crank.json";
 
-struct Result {
-  int code;
-  std::string out;  // stdout and stderr together
-};
-
-Result Mechkin(const std::string& args) {
-  Result r{0, ""};
-  FILE* p = ::popen((kBin + " " + args + " 2>&1").c_str(), "r");
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
-}
+using Result = mechkin_test::CliResult;
+Result Mechkin(const std::string& args) { return mechkin_test::RunCli(args); }
 
 std::string Dir() {
   static std::string d = [] {
@@ -138,10 +126,10 @@ TEST(SweepLimits, AGridBeyondTheVariantLimitIsAnArgumentError) {
 
 TEST(SweepLimits, SamplesMonteCarloAndStepsBeyondTheirLimitsAreArgumentErrors) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"sweep " + kSlider + " --samples 100000001", "not in range 1 to 100000000"},
+      {"sweep " + kSlider + " --samples 100000001", "--samples: the sweep's sample count must be a whole number from 1 to 100000000"},
       {"sweep " + kSlider + " --samples 1e12", "--samples"},
-      {"tolerance " + kSlider + " --monte-carlo 100000001", "not in range 0 to 100000000"},
-      {"range " + kSlider + " --steps 10000001", "not in range 4 to 10000000"},
+      {"tolerance " + kSlider + " --monte-carlo 100000001", "--monte-carlo: the Monte-Carlo sample count must be a whole number from 0 to 100000000"},
+      {"range " + kSlider + " --steps 10000001", "--steps: the range's steps per direction must be a whole number from 4 to 10000000"},
   };
   for (const auto& [args, limit] : cases) {
     const Result r = Mechkin(args);

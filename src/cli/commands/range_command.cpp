@@ -18,11 +18,12 @@ void SetupRangeCommand(CLI::App& app, RangeCommandOptions* o) {
   cmd->add_option("-o,--output", o->output, "Report file (default: stdout); written atomically");
   cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember(NamesOf<ReportFormat>()));
   cmd->add_option("--steps", o->steps, "Steps per direction (a turn, or the search span; default 360)")
-      ->check(CLI::Range(4, 10000000));
+      ->check(CountCheck(kRangeSteps));
   cmd->add_option("--span", o->span, "Search span of translations and distances, file units (default 4x the size)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--tol", o->tolerance, "Position tolerance (default 1e-10)")->check(ToleranceCheck());
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
+  AddKeepPartialOption(cmd, &o->keep_partial, "the drivers done");
 }
 
 int RunRangeCommand(const RangeCommandOptions& o, std::ostream& out, std::ostream& err) {
@@ -37,6 +38,7 @@ int RunRangeCommand(const RangeCommandOptions& o, std::ostream& out, std::ostrea
   options.steps = o.steps;
   options.span = o.span;
   options.tolerance = o.tolerance;
+  options.interrupted = InstallInterruptPoll(o.keep_partial);
   const RangeReport report = CalcRange(*model, options);
   if (!report.ok) {
     err << "mechkin range: " << o.file << ": " << report.message << "\n";
@@ -46,7 +48,7 @@ int RunRangeCommand(const RangeCommandOptions& o, std::ostream& out, std::ostrea
   if (o.format == "json") text << RangeReportJsonText(report) << "\n";
   else PrintRangeReport(report, text);
   if (!CommitReport(&file, text.str(), "range", err)) return 1;
-  return 0;
+  return report.interrupted ? kInterruptedExit : 0;
 }
 
 }  // namespace mechkin

@@ -13,6 +13,7 @@ struct RangeCommandOptions {
   int steps = 360;
   double span = 0, tolerance = 1e-10;
   std::vector<std::string> set;
+  bool keep_partial = false;  // SIGINT writes the drivers done so far (marked partial), exit 130
 };
 
 void SetupRangeCommand(CLI::App& app, RangeCommandOptions* options);

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "analysis/enum_names.hpp"
+#include "io/interrupt.hpp"
 
 namespace mechkin {
 namespace {
@@ -56,6 +57,16 @@ bool SetTolerance(const std::string& text, RunRequest* r, std::string* why) {
 CLI::Validator OrderCheck() { return RequestCheck(&SetOrder, "in 0..4"); }
 CLI::Validator ToleranceCheck() { return RequestCheck(&SetTolerance, "in [1e-15, 1e-3]"); }
 
+CLI::Validator CountCheck(const CountLimit& limit) {
+  return CLI::Validator(
+      [limit](std::string& text) -> std::string {
+        double v = 0;
+        if (!ReadNumber(text, &v)) return std::string(limit.what) + " must be a whole number, not '" + text + "'";
+        return CountProblem(limit, v);
+      },
+      "in " + std::to_string(limit.low) + ".." + std::to_string(limit.high));
+}
+
 CLI::Option* AddOrderOption(CLI::App* cmd, RunRequest* request, const std::string& description) {
   return cmd->add_option("--order", request->order, description)->check(OrderCheck());
 }
@@ -78,6 +89,16 @@ CLI::Option* AddFormulationOption(CLI::App* cmd, RunRequest* request) {
           "--formulation", [request](const std::string& s) { Parse(s, &request->formulation); },
           "Rotational unknowns of the derivative solves (" + NameList<Formulation>() + ")")
       ->check(CLI::IsMember(NamesOf<Formulation>()));
+}
+
+CLI::Option* AddKeepPartialOption(CLI::App* cmd, bool* keep_partial, const std::string& what) {
+  return cmd->add_flag("--keep-partial", *keep_partial,
+                       "On Ctrl-C (SIGINT) write " + what + " so far, marked partial (exit 130), instead of nothing");
+}
+
+InterruptPoll InstallInterruptPoll(bool keep_partial) {
+  InstallInterruptHandlers(keep_partial);
+  return [] { return InterruptRequested(); };
 }
 
 }  // namespace mechkin

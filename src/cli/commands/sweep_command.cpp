@@ -17,7 +17,7 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
       ->check(CLI::IsMember({"csv", "json"}));
   cmd->add_option("--grid", o->grid, "NAME=FROM:TO:COUNT, repeatable: the grid of all combinations (at most 1e8)");
   cmd->add_option("--samples", o->samples, "N variants uniform within the parameters' min/max")
-      ->check(CLI::Range(1, 100000000));
+      ->check(CountCheck(kSweepSamples));
   cmd->add_option("--seed", o->seed, "Seed of --samples (default 1)");
   cmd->add_option("--shard", o->shard, "i/N: run the variants with index = i-1 (mod N), for job arrays");
   cmd->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::Range(0, 4096));
@@ -25,6 +25,7 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
   AddToleranceOption(cmd, &o->request, "Position tolerance of every run (default 1e-10)");
   cmd->add_option("--set", o->set, "Parameter value replacing the file's for every variant: NAME=NUMBER");
   cmd->add_flag("--merge", o->merge, "Join shard files written with --format json");
+  AddKeepPartialOption(cmd, &o->keep_partial, "the variants finished");
 }
 
 namespace {
@@ -53,12 +54,17 @@ bool ParseShard(const std::string& s, SweepOptions* options) {
   if (s.empty()) return true;
   const auto slash = s.find('/');
   if (slash == std::string::npos) return false;
-  try {
-    options->shard = std::stoi(s.substr(0, slash));
-    options->shards = std::stoi(s.substr(slash + 1));
-  } catch (const std::exception&) {
-    return false;
-  }
+  // Each side a whole integer: "1/2/3" or "1/2x" is not "1/2".
+  const auto whole = [](const std::string& text, int* v) {
+    size_t used = 0;
+    try {
+      *v = std::stoi(text, &used);
+    } catch (const std::exception&) {
+      return false;
+    }
+    return used == text.size();
+  };
+  if (!whole(s.substr(0, slash), &options->shard) || !whole(s.substr(slash + 1), &options->shards)) return false;
   return options->shards >= 1 && options->shard >= 1 && options->shard <= options->shards;
 }
 
@@ -129,12 +135,14 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
   if (!Variants(o, *model, options, &variants, err)) return 2;
   if (!Open(o, &file, out, err)) return 1;
   options.request = o.request;
+  options.request.interrupted = InstallInterruptPoll(o.keep_partial);
   options.threads = o.threads;
   SweepResult result = RunSweepShard(*model, variants, options);
   if (o.format == "json")
     result.identity = SweepIdentityText({o.files.front(), o.request.order, o.request.tolerance,
                                          static_cast<int>(o.request.solver), overrides, o.grid, o.samples, o.seed});
-  return Write(o, result, &file, err) ? 0 : 1;
+  if (!Write(o, result, &file, err)) return 1;
+  return result.interrupted ? kInterruptedExit : 0;
 }
 
 }  // namespace mechkin

@@ -19,6 +19,7 @@ struct SweepCommandOptions {
   unsigned long seed = 1;
   RunRequest request = SweepOptions::DefaultRequest();  // --order (default 1), --tol
   bool merge = false;
+  bool keep_partial = false;  // SIGINT writes the variants finished so far (marked partial), exit 130
 };
 
 void SetupSweepCommand(CLI::App& app, SweepCommandOptions* options);

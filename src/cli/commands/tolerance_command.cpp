@@ -18,12 +18,13 @@ void SetupToleranceCommand(CLI::App& app, ToleranceCommandOptions* o) {
   cmd->add_option("--format", o->format, "Report format (text, json)")->check(CLI::IsMember(NamesOf<ReportFormat>()));
   AddOrderOption(cmd, &o->request, "Derivative orders of the outputs analysed (default 0: positions)");
   cmd->add_option("--monte-carlo", o->monte_carlo, "Also sample N variants uniformly within the tolerances")
-      ->check(CLI::Range(0, 100000000));
+      ->check(CountCheck(kMonteCarloSamples));
   cmd->add_option("--seed", o->seed, "Seed of the Monte-Carlo samples (default 1)");
   cmd->add_option("--threads", o->threads, "Threads for the Monte-Carlo runs (default: all cores)")
       ->check(CLI::Range(0, 4096));
   AddToleranceOption(cmd, &o->request, "Position tolerance of every run (default 1e-10)");
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
+  AddKeepPartialOption(cmd, &o->keep_partial, "the report of the Monte-Carlo samples finished");
 }
 
 int RunToleranceCommand(const ToleranceCommandOptions& o, std::ostream& out, std::ostream& err) {
@@ -35,6 +36,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o, std::ostream& out, std
   if (!OpenReport(o.output, {o.file}, "tolerance", &file, out, err)) return 1;
   ToleranceOptions options;
   options.request = o.request;
+  options.request.interrupted = InstallInterruptPoll(o.keep_partial);
   options.monte_carlo = o.monte_carlo;
   options.seed = o.seed;
   options.threads = o.threads;
@@ -43,6 +45,7 @@ int RunToleranceCommand(const ToleranceCommandOptions& o, std::ostream& out, std
   if (o.format == "json") text << ToleranceReportJsonText(report) << "\n";
   else PrintToleranceReport(report, text);
   if (!CommitReport(&file, text.str(), "tolerance", err)) return 1;
+  if (report.interrupted) return kInterruptedExit;
   if (!report.ok) err << "mechkin tolerance: " << o.file << ": " << report.message << "\n";
   return report.ok ? 0 : 1;
 }

@@ -16,6 +16,7 @@ struct ToleranceCommandOptions {
   unsigned long seed = 1;
   RunRequest request = ToleranceOptions::DefaultRequest();  // --order (default 0), --tol
   std::vector<std::string> set;
+  bool keep_partial = false;  // SIGINT writes the samples finished so far (marked partial), exit 130
 };
 
 void SetupToleranceCommand(CLI::App& app, ToleranceCommandOptions* options);

@@ -1,5 +1,7 @@
 #include "cli/commands/view_command.hpp"
 
+#include <cmath>
+
 #include "analysis/run_request.hpp"
 #include "cli/commands/load_for_command.hpp"
 #include "cli/commands/request_options.hpp"
@@ -24,6 +26,7 @@ void SetupViewCommand(CLI::App& app, ViewOptions* o) {
   cmd->add_option("--set", o->set, "Parameter value replacing the file's: NAME=NUMBER (repeatable)");
   cmd->add_option("--up", o->up, "Axis drawn upwards (default: the file's view.up, else against gravity, else y)")->check(CLI::IsMember({"x", "y", "z"}));
   cmd->add_option("--plots", o->plots, "Plotted columns: names separated by ',' within a plot, ';' between plots");
+  AddKeepPartialOption(cmd, &o->keep_partial, "the page of the rows computed");
 }
 
 namespace {
@@ -32,6 +35,53 @@ std::string DefaultPage(const std::string& file) {
   std::string stem = file.substr(file.find_last_of('/') + 1);
   stem = stem.substr(0, stem.rfind('.'));
   return (stem.empty() ? "mechanism" : stem) + ".html";
+}
+
+// Keeps only the rows the page shows, as the run makes them: the max_frames evenly
+// spaced rows of the planned run (io/viewer.cpp Frames: index round(k (N−1)/(M−1)),
+// first and last included) and, for a run that stops early, its last row. A 1e7-step
+// view so holds ~2000 rows instead of the whole table (the glTF, a keyframe per row,
+// still takes the whole motion). A complete run gives the page it gave before.
+class PageRowSink : public RowSink {
+ public:
+  PageRowSink(Motion* motion, long long planned_rows, int max_frames)
+      : motion_(motion), planned_(planned_rows), frames_(std::max(2, max_frames)), last_(motion->cols()) {}
+  bool Append(const double* row, int size) override {
+    const bool keep = planned_ <= frames_ || index_ == Target();
+    if (keep) {
+      motion_->Append(row, size);
+      ++frame_;
+    } else {
+      std::copy(row, row + size, last_.begin());
+    }
+    pending_ = !keep;
+    ++index_;
+    return true;
+  }
+  /// The stop row of a run that ended between two kept rows.
+  void Finish() {
+    if (pending_) motion_->Append(last_.data(), static_cast<int>(last_.size()));
+  }
+
+ private:
+  long long Target() const { return std::llround(double(frame_) * (planned_ - 1) / (frames_ - 1)); }
+  Motion* motion_;
+  long long planned_, index_ = 0, frame_ = 0;
+  int frames_;
+  std::vector<double> last_;
+  bool pending_ = false;
+};
+
+// The run for the page alone (no glTF): only the page's rows kept (PageRowSink).
+Motion RunForPage(const Model& model, const RunRequest& request, int max_frames) {
+  const RunPlan plan = PlanRun(model, request);
+  Motion motion{MotionLayout(model, plan.table)};
+  PageRowSink sink(&motion, model.analysis ? model.analysis->steps + 1LL : 0, max_frames);
+  motion.report = RunIntoSink(model, plan.analysis, motion.layout(), &sink);
+  sink.Finish();
+  motion.complete = motion.report.complete;
+  motion.stop = StopOf(motion.report);
+  return motion;
 }
 
 }  // namespace
@@ -48,7 +98,7 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides);
   if (!loaded) return 1;
   const Model& model = *loaded;
-  const RunRequest request = o.Request();
+  RunRequest request = o.Request();
   std::string why;
   if (!request.IsValid(&why)) {
     err << "mechkin view: " << why << "\n";
@@ -62,7 +112,9 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
     err << "mechkin view: " << why << "\n";
     return 1;
   }
-  const Motion motion = RunMotion(model, request);
+  request.interrupted = InstallInterruptPoll(o.keep_partial);
+  const Motion motion = o.gltf.empty() ? RunForPage(model, request, o.max_frames) : RunMotion(model, request);
+  const bool interrupted = motion.stop.kind == StopKind::Interrupted;
   if (!motion.complete) err << "mechkin view: " << o.file << ": " << motion.stop.message << "\n";
   if (motion.rows() == 0) return 1;  // nothing to show
   SceneOptions scene;
@@ -84,7 +136,7 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
     }
     out << "glTF written to " << o.gltf << "\n";
   }
-  return motion.complete ? 0 : 1;
+  return motion.complete ? 0 : interrupted ? kInterruptedExit : 1;
 }
 
 }  // namespace mechkin

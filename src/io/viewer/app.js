@@ -563,7 +563,11 @@
   setTime(hash.has("t") ? Number(hash.get("t")) : T[0]);
   setPlaying(hash.has("play") || (!hash.has("paused") && !hash.has("t") && !D.paused));
   renderer.render(scene, camera);
-  if (hash.has("probe")) { probe = Number(hash.get("probe")); reportProbe(probe); }
+  if (hash.has("probe")) {  // #probe=BODY: a body's index; another value is reported, not thrown
+    const b = Number(hash.get("probe"));
+    if (Number.isInteger(b) && b >= 0 && b < D.bodies.length) { probe = b; reportProbe(probe); }
+    else errors.push("#probe=" + hash.get("probe") + ": no body with that index (0.." + (D.bodies.length - 1) + ")");
+  }
   if (hash.has("export")) {
     const what = hash.get("export");
     document.getElementById("export").textContent = what === "csv" ? plots.csvText() : plots.svgText(Number(what));
