@@ -366,6 +366,10 @@
       setTime(t);
     }
     lastWall = now;
+    // The test hook for "opens playing": the time shown and whether it plays, read
+    // from the DOM instead of from how many pixels moved in a wall-clock window.
+    document.body.setAttribute("data-time", current.toPrecision(9));
+    document.body.setAttribute("data-playing", playing ? "1" : "0");
     controls.update();
     renderer.render(scene, camera);
     if (probe >= 0) reportProbe(probe);
