@@ -362,7 +362,11 @@ class Motion:
 
     def sensitivity(self, column, parameter):
         """d(column)/d(parameter) per row (run with sensitivity=[parameter])."""
-        return self["%s/d(%s)" % (column, parameter)]
+        base = self._index.get(column)
+        for k, c in enumerate(self.columns):
+            if c.get("wrt") == parameter and c.get("base") == base and base is not None:
+                return self.values[:, k]
+        raise KeyError("no sensitivity of %r to %r in this motion (run with sensitivity=[%r])" % (column, parameter, parameter))
 
     @property
     def indeterminate_reactions(self):
@@ -371,11 +375,18 @@ class Motion:
 
     def effort(self, driver, order=0):
         """The torque (rotation) or force (translation, distance) the driver applies; order 1: its rate."""
-        return self[driver + ".effort" + ("_t" if order else "")]
+        return self._rated("driver_effort", driver, order)
 
     def power(self, driver, order=0):
         """The power the driver delivers; order 1: its rate."""
-        return self[driver + ".power" + ("_t" if order else "")]
+        return self._rated("driver_power", driver, order)
+
+    def _rated(self, quantity, driver, order):
+        k = self._find(quantity, driver, -1, order)
+        if k is None:
+            raise KeyError("no %s of driver %r at order %d in this motion (run with forces=True)"
+                           % (quantity.replace("driver_", ""), driver, order))
+        return self.values[:, k]
 
     def reaction(self, joint, frame="global", order=0):
         """(force, moment) that body1 exerts on body2 at the joint origin, rows × 3 each:

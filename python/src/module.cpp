@@ -245,6 +245,10 @@ py::list Columns(const PyMotion& pm) {
     d["subject"] = c.subject;
     d["component"] = c.component;
     d["order"] = c.order;
+    // A sensitivity column names the parameter and the column it differentiates.
+    const auto& params = pm.motion->layout().options().sensitivity;
+    d["wrt"] = c.wrt >= 0 ? py::object(py::str(params[c.wrt])) : py::object(py::none());
+    d["base"] = c.base >= 0 ? py::object(py::int_(c.base)) : py::object(py::none());
     out.append(d);
   }
   return out;

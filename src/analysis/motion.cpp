@@ -282,6 +282,36 @@ int MotionLayout::Find(Quantity q, int subject_index, int component, int order) 
   return -1;
 }
 
+int MotionLayout::SensitivityOf(int column, int parameter) const {
+  for (size_t c = 0; c < columns_.size(); ++c)
+    if (columns_[c].wrt == parameter && columns_[c].base == column) return static_cast<int>(c);
+  return -1;
+}
+
+int MotionLayout::SensitivityOf(const std::string& column, const std::string& parameter) const {
+  const auto& names = options_.sensitivity;
+  const auto p = std::find(names.begin(), names.end(), parameter);
+  const int base = Find(column);
+  return p == names.end() || base < 0 ? -1 : SensitivityOf(base, static_cast<int>(p - names.begin()));
+}
+
+namespace {
+int FindBySubject(const std::vector<ColumnDescriptor>& columns, Quantity q, const std::string& subject, int order) {
+  for (size_t c = 0; c < columns.size(); ++c)
+    if (columns[c].quantity == q && columns[c].subject == subject && columns[c].order == order && columns[c].wrt < 0)
+      return static_cast<int>(c);
+  return -1;
+}
+}  // namespace
+
+int MotionLayout::EffortOf(const std::string& driver, int order) const {
+  return FindBySubject(columns_, Quantity::DriverEffort, driver, order);
+}
+
+int MotionLayout::PowerOf(const std::string& driver, int order) const {
+  return FindBySubject(columns_, Quantity::DriverPower, driver, order);
+}
+
 std::vector<int> MotionLayout::NeededBodies(const Model& model) const {
   std::vector<char> need(model.num_bodies(), 0);
   for (const Item& it : items_) {

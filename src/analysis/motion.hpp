@@ -90,6 +90,14 @@ class MotionLayout {
   int Find(const std::string& name) const;
   /// First column of a body's or output's series of the given quantity, component and order, or −1.
   int Find(Quantity q, int subject_index, int component, int order) const;
+  /// The typed accessors (issue 32: no code outside the layout composes a column
+  /// name). Column d(column)/d(parameter), parameter an index into
+  /// options().sensitivity or its name; −1 when the table has none.
+  int SensitivityOf(int column, int parameter) const;
+  int SensitivityOf(const std::string& column, const std::string& parameter) const;
+  /// A driver's effort (torque or force) or power column of the given order (0 or 1), by name; −1 if none.
+  int EffortOf(const std::string& driver, int order) const;
+  int PowerOf(const std::string& driver, int order) const;
   double length_factor() const { return len_; }  // SI → table unit
   double angle_factor() const { return ang_; }
   /// Bodies whose motion the selection reads (for the block-by-block path).

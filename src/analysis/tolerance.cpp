@@ -42,7 +42,7 @@ ToleranceColumn LinearStack(const Motion& m, int col, const ToleranceReport& rep
     return tc;
   }
   std::vector<int> sens;
-  for (const auto& p : rep.parameters) sens.push_back(m.layout().Find(tc.name + "/d(" + p + ")"));
+  for (const auto& p : rep.parameters) sens.push_back(m.layout().SensitivityOf(tc.name, p));
   int worst_row = 0;
   for (int r = 0; r < m.rows(); ++r) {
     double wc = 0, ss = 0;
