@@ -17,6 +17,11 @@ main_pkgs=(g++ cmake ninja-build libeigen3-dev libceres-dev libsuitesparse-dev n
            python3 python3-dev pybind11-dev python3-numpy python3-pandas libjs-three)
 test_pkgs=(libgtest-dev libgmock-dev libbenchmark-dev python3-jsonschema python3-pytest python3-pil
            python3-dask python3-distributed chromium clang libclang-rt-14-dev libsimbody-dev)
+# --print-packages main|tests: the list only (tools/install_times.sh times them on a fresh system).
+if [ "$with_tests" -eq 0 ] && [ "${build}" = "--print-packages" ]; then
+  if [ "${1:-main}" = "tests" ]; then echo "${test_pkgs[@]}"; else echo "${main_pkgs[@]}"; fi
+  exit 0
+fi
 pkgs=("${main_pkgs[@]}")
 [ "$with_tests" -eq 1 ] && pkgs+=("${test_pkgs[@]}")
 SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"

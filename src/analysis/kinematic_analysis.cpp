@@ -12,6 +12,7 @@
 #include "analysis/error_bounds.hpp"
 #include "analysis/row_selection.hpp"
 #include "analysis/singular_points.hpp"
+#include "analysis/step_observer.hpp"
 
 namespace mechkin {
 
@@ -130,8 +131,12 @@ class Stepper {
   Stepper(std::unique_ptr<KinematicsWorkspace> ws, const AnalysisOptions& options, RowSelection selection,
           SystemState start, std::unique_ptr<SensitivitySolver> sensitivity)
       : ws_(std::move(ws)), model_(ws_->system().model()), options_(options), selection_(std::move(selection)),
-        s_(std::move(start)), prev_(s_), predicted_(s_), good_(s_), sensitivity_(std::move(sensitivity)) {
-    if (options.forces) forces_ = std::make_unique<ForceSolver>(ws_->system(), selection_, options.order);
+        s_(std::move(start)), prev_(s_), predicted_(s_), good_(s_) {
+    // What runs on each accepted step besides the solve, in order (step_observer.hpp);
+    // Run appends the row delivery last.
+    if (options.forces) observers_.push_back(MakeForceObserver(ws_->system(), selection_, options.order));
+    if (sensitivity) observers_.push_back(MakeSensitivityObserver(std::move(sensitivity)));
+    if (auto limits = MakeJointLimitObserver(model_, options)) observers_.push_back(std::move(limits));
     solve_.tolerance = options.tolerance;
     solve_.max_iterations = options.max_iterations;
     predictor_ = std::min(options.predictor_order, options.order);
@@ -155,7 +160,6 @@ class Stepper {
   Verdict ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag, AnalysisReport* rep);
   bool StopAtConditionMinimum(double t, double h, const StepDiagnostics& diag, AnalysisReport* rep);
   bool ActOnPending(double h, AnalysisReport* rep);
-  bool StopAtJointLimit(int step, AnalysisReport* rep);
   SingularityClassifier& Classifier();
   void StopAtBifurcation(const SingularClassification& c, AnalysisReport* rep);
   bool CrossesPassage(double t, double dt) const { return dt > 0 && passage_t_ > t - dt * (1 + 1e-12) && passage_t_ <= t; }
@@ -186,10 +190,7 @@ class Stepper {
   std::optional<std::pair<SingularClassification, SingularPosition>> pending_;  // located ahead of the row
   double step_sign_ = 0;
   bool step_have_sign_ = false;
-  std::unique_ptr<ForceSolver> forces_;
-  ForceResults force_results_;
-  JointLimitWatch limits_{model_};
-  std::unique_ptr<SensitivitySolver> sensitivity_;
+  std::vector<std::unique_ptr<StepObserver>> observers_;
 };
 
 // One attempt from the accepted state to time t (predictor over dt).
@@ -304,7 +305,7 @@ bool Stepper::Reselect(const SystemState& at, double min_gain, AnalysisReport* r
   selection_ = std::move(next);
   ws_ = std::make_unique<KinematicsWorkspace>(sys, selection_.active, WorkspaceOptionsOf(options_));
   CheckSetAsideOnSolvedBodies();
-  if (options_.forces) forces_ = std::make_unique<ForceSolver>(sys, selection_, options_.order);
+  for (auto& o : observers_) o->Reselected(sys, selection_);
   have_sign_ = false;  // det Φ_q of other rows: its sign starts afresh
   rep->reselections.push_back({at.t, selection_.set_aside_names});
   return true;
@@ -433,44 +434,10 @@ bool Stepper::ActOnPending(double h, AnalysisReport* rep) {
   return false;
 }
 
-// Joint limits (analysis/joint_limits.hpp), after the row's forces (the location's
-// solves reuse the workspace): the first row must start inside them; a step that
-// crosses a bound is located, then stops the run or, with on_limit_report, is noted.
-bool Stepper::StopAtJointLimit(int step, AnalysisReport* rep) {
-  if (limits_.empty()) return false;
-  if (step == 0) {
-    const std::optional<int> outside = limits_.Start(s_);
-    if (!outside) return false;
-    const Joint& j = model_.joints[*outside];
-    const bool rot = LimitOnRotation(j.type);
-    const double unit = rot ? model_.units.angle_to_si : model_.units.length_to_si;
-    const std::string text = "joint `" + j.name + "` starts at " + FormatNumber(LimitedCoordinate(j, s_, 0.0) / unit) +
-                             " " + (rot ? model_.units.angle_name : model_.units.length_name) + ", outside its limits [" +
-                             FormatNumber(j.limits->first / unit) + ", " + FormatNumber(j.limits->second / unit) + "]";
-    if (options_.on_limit_report) {
-      rep->notes.push_back(text);
-      return false;
-    }
-    rep->stop = StopKind::JointLimit;
-    rep->message = text + "; widen the limits or start the drivers elsewhere (`--on-limit report` goes on)";
-    return true;
-  }
-  const std::optional<JointLimitHit> hit = limits_.Check(*ws_, prev_, s_, std::max(predictor_, 1));
-  limits_.Accept(s_);
-  if (!hit) return false;
-  rep->joint_limits.push_back(*hit);
-  if (options_.on_limit_report) {
-    rep->notes.push_back(JointLimitMessage(model_, *hit, rep->rows, false));
-    return false;
-  }
-  rep->stop = StopKind::JointLimit;
-  rep->message = JointLimitMessage(model_, *hit, rep->rows, true);
-  return true;
-}
-
 void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
   const Analysis& an = *model_.analysis;
   const double h = (an.end - an.start) / an.steps;
+  observers_.push_back(MakeRowDelivery(options_, on_step));
   for (int step = 0; step <= an.steps; ++step) {
     const double t = an.start + step * h;
     const auto t0 = Clock::now();
@@ -499,34 +466,9 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
     FinishDiagnostics(&diag);
     ReselectAndResolve(&diag, rep);
     if (StopAtConditionMinimum(t, h, diag, rep)) return;
-    if (forces_) {
-      forces_->Solve(*ws_, s_, &force_results_);
-      diag.forces = &force_results_;
-      rep->indeterminate_reactions = forces_->indeterminate();
-    }
-    if (sensitivity_) {
-      if (!sensitivity_->Solve(*ws_, s_)) {
-        rep->stop = StopKind::SolveFailed;
-        rep->message = "the sensitivities cannot be solved at t = " + std::to_string(t) + " s";
-        return;
-      }
-      diag.sensitivity = sensitivity_.get();
-    }
-    if (StopAtJointLimit(step, rep)) return;
-    diag.solve_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    UpdateAngleReferences(ws_->system(), &s_);
-    if (options_.keep_step_diagnostics) rep->steps.push_back(diag);
-    ++rep->rows;
-    if (!on_step(s_, diag)) {
-      rep->stop = StopKind::Interrupted;
-      rep->message = "stopped by the caller";
-      return;
-    }
-    if (options_.interrupted && options_.interrupted()) {
-      rep->stop = StopKind::Interrupted;
-      rep->message = "interrupted";
-      return;
-    }
+    const StepContext context{*ws_, prev_, step, std::max(predictor_, 1), t0};
+    for (auto& o : observers_)
+      if (!o->Observe(context, s_, &diag, rep)) return;
     prev_ = s_;
   }
   rep->complete = true;
