@@ -99,23 +99,44 @@ MotionLayout::MotionLayout(const Model& model, const TableOptions& options) : op
     ang_ = 1 / model.units.angle_to_si;
   }
   columns_.push_back({"t", "s", "", Quantity::Time});
+  Close(Segment::Kind::Time, -1, 0);
   for (int b = 0; b < model.num_bodies(); ++b)
-    if (Selected(options.all_bodies, options.bodies, model.bodies[b].name)) AddBody(model, b);
+    if (Selected(options.all_bodies, options.bodies, model.bodies[b].name)) {
+      const int first = size();
+      AddBody(model, b);
+      Close(Segment::Kind::Body, b, first);
+    }
   for (const auto& sel : options.bodies)
     if (!options.all_bodies && std::none_of(model.bodies.begin(), model.bodies.end(), [&](const Body& b) { return b.name == sel; }))
       throw std::invalid_argument("--bodies: no body named '" + sel + "'");
   for (size_t o = 0; o < model.outputs.size(); ++o)
-    if (Selected(options.all_outputs, options.outputs, model.outputs[o].name)) AddOutput(model, static_cast<int>(o));
+    if (Selected(options.all_outputs, options.outputs, model.outputs[o].name)) {
+      const int first = size();
+      AddOutput(model, static_cast<int>(o));
+      Close(Segment::Kind::Output, static_cast<int>(o), first);
+    }
   for (const auto& sel : options.outputs)
     if (!options.all_outputs && std::none_of(model.outputs.begin(), model.outputs.end(), [&](const Output& o) { return o.name == sel; }))
       throw std::invalid_argument("--outputs: no output named '" + sel + "'");
-  if (options.forces) AddForces(model);
+  if (options.forces) {
+    const int first = size();
+    AddForces(model);
+    Close(Segment::Kind::Forces, -1, first);
+  }
+  const int diagnostics = size();
   columns_.push_back({"newton_iterations", "", "", Quantity::NewtonIterations});
   columns_.push_back({"residual", "", "", Quantity::Residual});
   columns_.push_back({"condition", "", "", Quantity::Condition});
   for (int k = 0; k <= options.order; ++k)
     columns_.push_back({std::string("error_bound") + kSuffix[k], "", "", Quantity::ErrorBound, -1, -1, k});
+  Close(Segment::Kind::Diagnostics, -1, diagnostics);
+  const int sensitivities = size();
   AddSensitivities();
+  if (size() > sensitivities) Close(Segment::Kind::Sensitivities, -1, sensitivities);
+}
+
+void MotionLayout::Close(Segment::Kind kind, int index, int first) {
+  segments_.push_back({kind, index, first, size() - first});
 }
 
 // "piston.x/d(crank)" for every body and output column and every parameter, in
@@ -357,20 +378,40 @@ double RowEvaluator::JointAngle(const SystemState& s, int o, double raw_sin, dou
   return angle_ref_[o];
 }
 
+// Each segment's extractor writes at the segment's own offset; one that wrote another
+// number of values than its segment holds is a defect of the layout, caught here
+// rather than shifting every later column (tests run every layout through this).
 void RowEvaluator::Evaluate(const SystemState& s, const StepDiagnostics& d, double* row) {
-  const int order = layout_.options().order;
-  double* out = row;
-  *out++ = d.t;
-  for (const auto& it : layout_.items())
-    out = it.is_body ? BodyValues(s.bodies[it.index], out) : OutputValues(s, it.index, out);
-  if (layout_.options().forces) out = ForceValues(d.forces, out);
+  for (const MotionLayout::Segment& g : layout_.segments()) {
+    double* const at = row + g.first;
+    if (SegmentValues(g, s, d, at) != at + g.count)
+      throw std::logic_error("motion layout: a segment's extractor disagrees with its " + std::to_string(g.count) +
+                             " columns at column " + std::to_string(g.first));
+  }
+  last_t_ = s.t;
+  first_row_ = false;
+}
+
+double* RowEvaluator::SegmentValues(const MotionLayout::Segment& g, const SystemState& s, const StepDiagnostics& d,
+                                    double* at) {
+  using Kind = MotionLayout::Segment::Kind;
+  switch (g.kind) {
+    case Kind::Time: *at = d.t; return at + 1;
+    case Kind::Body: return BodyValues(s.bodies[g.index], at);
+    case Kind::Output: return OutputValues(s, g.index, at);
+    case Kind::Forces: return ForceValues(d.forces, at);
+    case Kind::Diagnostics: return DiagnosticValues(d, at);
+    case Kind::Sensitivities: SensitivityValues(d, at - g.first); return at + g.count;
+  }
+  return at;
+}
+
+double* RowEvaluator::DiagnosticValues(const StepDiagnostics& d, double* out) const {
   *out++ = d.iterations;
   *out++ = d.residual;
   *out++ = d.condition;
-  for (int k = 0; k <= order; ++k) *out++ = d.error_bound[k];
-  if (!layout_.options().sensitivity.empty()) SensitivityValues(d, row);
-  last_t_ = s.t;
-  first_row_ = false;
+  for (int k = 0; k <= layout_.options().order; ++k) *out++ = d.error_bound[k];
+  return out;
 }
 
 // The poses of the move carry no rates worth extrapolating: after each one the

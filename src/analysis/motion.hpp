@@ -106,6 +106,17 @@ class MotionLayout {
   struct Item { bool is_body; int index; };
   const std::vector<Item>& items() const { return items_; }
 
+  /// The columns in runs that one extractor fills (issue 32, "columns that carry
+  /// their values"): each segment knows where its columns start and how many there
+  /// are, and RowEvaluator writes each at its own offset and checks the count, so
+  /// the layout and the values cannot drift apart.
+  struct Segment {
+    enum class Kind { Time, Body, Output, Forces, Diagnostics, Sensitivities } kind;
+    int index;        // the body or output (−1 otherwise)
+    int first, count;  // its columns
+  };
+  const std::vector<Segment>& segments() const { return segments_; }
+
  private:
   void AddBody(const Model& model, int b);
   void AddOutput(const Model& model, int o);
@@ -118,8 +129,11 @@ class MotionLayout {
   void AddSeries(Quantity q, const std::string& subject, int index, const std::string& name, int component,
                  const std::string& unit, int first_order);
 
+  void Close(Segment::Kind kind, int index, int first);
+
   TableOptions options_;
   std::vector<Item> items_;
+  std::vector<Segment> segments_;
   std::vector<ColumnDescriptor> columns_;
   double len_ = 1, ang_ = 1;
 };
@@ -142,6 +156,8 @@ class RowEvaluator {
   double* BodyValues(const BodyKinematics& b, double* out) const;
   double* OutputValues(const SystemState& s, int o, double* out);
   double* ForceValues(const ForceResults* f, double* out) const;
+  double* SegmentValues(const MotionLayout::Segment& g, const SystemState& s, const StepDiagnostics& d, double* row);
+  double* DiagnosticValues(const StepDiagnostics& d, double* out) const;
   void SensitivityValues(const StepDiagnostics& d, double* row);
 
   // The same layout evaluated on the model compiled at p ± h (sensitivity columns).
