@@ -1,0 +1,21 @@
+// Revolute R (constraints.md §5): Φ^SPH and parallel-1; one rotation about h.
+#include "joints/descriptor.hpp"
+
+namespace mechkin {
+
+JointDescriptor RevoluteJoint() {
+  JointDescriptor d;
+  d.name = "revolute";
+  d.frames = JointFrameRule::Axis;
+  d.equations = {SphericalEquation()};
+  for (const JointEquation& e : ParallelOne()) d.equations.push_back(e);
+  d.coordinates = JointCoordinates::Angle;
+  d.turns = true;
+  d.limit = JointLimit::Angle;
+  d.planar = PlanarRole::Turn;
+  d.relaxations = {"cylindrical", "universal", "spherical"};
+  d.glyph = "pin";
+  return d;
+}
+
+}  // namespace mechkin
