@@ -1,6 +1,6 @@
 // Cylindrical C (constraints.md §5): parallel-1 and parallel-2; rotation about and
 // slide along h.
-#include "joints/descriptor.hpp"
+#include "joints/equations.hpp"
 
 namespace mechkin {
 
@@ -8,8 +8,7 @@ JointDescriptor CylindricalJoint() {
   JointDescriptor d;
   d.name = "cylindrical";
   d.frames = JointFrameRule::Axis;
-  d.equations = ParallelOne();
-  for (const JointEquation& e : ParallelTwo()) d.equations.push_back(e);
+  d.equations = Joined({ParallelOne(), ParallelTwo()});
   d.coordinates = JointCoordinates::AngleAndSlide;
   d.turns = true;
   d.slides = true;

@@ -1,4 +1,5 @@
 #include "joints/descriptor.hpp"
+#include "joints/equations.hpp"
 
 #include <algorithm>
 
@@ -20,11 +21,16 @@ namespace {
 
 std::vector<std::string> FrameKeys(JointFrameRule rule) {
   switch (rule) {
-    case JointFrameRule::Axis: return {"origin", "axis"};
-    case JointFrameRule::Normal: return {"origin", "normal"};
-    case JointFrameRule::CrossAxes: return {"origin", "axis1", "axis2"};
-    case JointFrameRule::Point: return {"origin"};
-    case JointFrameRule::TwoPoints: return {"point1", "point2"};
+    case JointFrameRule::Axis:
+      return {"origin", "axis"};
+    case JointFrameRule::Normal:
+      return {"origin", "normal"};
+    case JointFrameRule::CrossAxes:
+      return {"origin", "axis1", "axis2"};
+    case JointFrameRule::Point:
+      return {"origin"};
+    case JointFrameRule::TwoPoints:
+      return {"point1", "point2"};
   }
   return {};
 }
@@ -59,7 +65,9 @@ std::vector<std::string> JointDescriptor::MarkerOptionalKeys() const {
 }
 
 JointEquation SphericalEquation() {
-  return {JointPrimitive::Spherical, FrameAxis::H, FrameAxis::H,
+  return {JointPrimitive::Spherical,
+          FrameAxis::H,
+          FrameAxis::H,
           {"translation along global x", "translation along global y", "translation along global z"}};
 }
 
@@ -71,6 +79,12 @@ std::vector<JointEquation> ParallelOne() {
 std::vector<JointEquation> ParallelTwo() {
   return {{JointPrimitive::Dot2, FrameAxis::F, FrameAxis::H, {"translation along its frame's f axis"}},
           {JointPrimitive::Dot2, FrameAxis::G, FrameAxis::H, {"translation along its frame's g axis"}}};
+}
+
+std::vector<JointEquation> Joined(const std::vector<std::vector<JointEquation>>& groups) {
+  std::vector<JointEquation> out;
+  for (const auto& g : groups) out.insert(out.end(), g.begin(), g.end());
+  return out;
 }
 
 }  // namespace mechkin

@@ -1,6 +1,6 @@
 // Prismatic P (constraints.md §5): parallel-1, parallel-2 and Φ^DOT_1(f_i, g_j),
 // regular at θ = 0 ("Prismatic with aligned frames"); one slide along h.
-#include "joints/descriptor.hpp"
+#include "joints/equations.hpp"
 
 namespace mechkin {
 
@@ -8,9 +8,9 @@ JointDescriptor PrismaticJoint() {
   JointDescriptor d;
   d.name = "prismatic";
   d.frames = JointFrameRule::Axis;
-  d.equations = ParallelOne();
-  for (const JointEquation& e : ParallelTwo()) d.equations.push_back(e);
-  d.equations.push_back({JointPrimitive::Dot1, FrameAxis::F, FrameAxis::G, {"rotation about its axis"}});
+  d.equations = Joined({ParallelOne(),
+                        ParallelTwo(),
+                        {{JointPrimitive::Dot1, FrameAxis::F, FrameAxis::G, {"rotation about its axis"}}}});
   d.coordinates = JointCoordinates::Slide;
   d.slides = true;
   d.limit = JointLimit::Slide;

@@ -1,5 +1,5 @@
 // Revolute R (constraints.md §5): Φ^SPH and parallel-1; one rotation about h.
-#include "joints/descriptor.hpp"
+#include "joints/equations.hpp"
 
 namespace mechkin {
 
@@ -7,8 +7,7 @@ JointDescriptor RevoluteJoint() {
   JointDescriptor d;
   d.name = "revolute";
   d.frames = JointFrameRule::Axis;
-  d.equations = {SphericalEquation()};
-  for (const JointEquation& e : ParallelOne()) d.equations.push_back(e);
+  d.equations = Joined({{SphericalEquation()}, ParallelOne()});
   d.coordinates = JointCoordinates::Angle;
   d.turns = true;
   d.limit = JointLimit::Angle;

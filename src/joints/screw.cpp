@@ -1,6 +1,6 @@
 // Screw H (constraints.md §5): parallel-1, parallel-2 and Φ^SDA (§3.10) with the
 // file's pitch; rotation and slide coupled.
-#include "joints/descriptor.hpp"
+#include "joints/equations.hpp"
 
 namespace mechkin {
 
@@ -9,9 +9,10 @@ JointDescriptor ScrewJoint() {
   d.name = "screw";
   d.frames = JointFrameRule::Axis;
   d.scalar = JointScalar::Pitch;
-  d.equations = ParallelOne();
-  for (const JointEquation& e : ParallelTwo()) d.equations.push_back(e);
-  d.equations.push_back({JointPrimitive::Screw, FrameAxis::H, FrameAxis::H, {"slide coupled to rotation by the pitch"}});
+  d.equations =
+      Joined({ParallelOne(),
+              ParallelTwo(),
+              {{JointPrimitive::Screw, FrameAxis::H, FrameAxis::H, {"slide coupled to rotation by the pitch"}}}});
   d.coordinates = JointCoordinates::AngleAndSlide;
   d.turns = true;
   d.slides = true;

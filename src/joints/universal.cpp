@@ -8,8 +8,9 @@ JointDescriptor UniversalJoint() {
   JointDescriptor d;
   d.name = "universal";
   d.frames = JointFrameRule::CrossAxes;
-  d.equations = {SphericalEquation(),
-                 {JointPrimitive::Dot1, FrameAxis::H, FrameAxis::H, {"rotation about the common normal of its two axes"}}};
+  d.equations = {
+      SphericalEquation(),
+      {JointPrimitive::Dot1, FrameAxis::H, FrameAxis::H, {"rotation about the common normal of its two axes"}}};
   d.coordinates = JointCoordinates::TwoAngles;
   d.relaxations = {"spherical"};
   d.glyph = "cross";

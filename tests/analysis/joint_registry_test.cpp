@@ -14,6 +14,7 @@
 #include "analysis/run_request.hpp"
 #include "constraints/system.hpp"
 #include "io/check_report_writer.hpp"
+#include "joints/equations.hpp"
 #include "joints/registry.hpp"
 #include "test_files.hpp"
 
@@ -27,8 +28,7 @@ JointDescriptor TestHinge() {
   JointDescriptor d;
   d.name = "test_hinge";
   d.frames = JointFrameRule::Axis;
-  d.equations = {SphericalEquation()};
-  for (const JointEquation& e : ParallelOne()) d.equations.push_back(e);
+  d.equations = Joined({{SphericalEquation()}, ParallelOne()});
   d.coordinates = JointCoordinates::Angle;
   d.turns = true;
   d.limit = JointLimit::Angle;
