@@ -364,7 +364,7 @@ py::dict ModelInfo(const LoadedModel& lm) {
   py::list bodies, joints, drivers, outputs;
   for (const auto& b : m.bodies) bodies.append(b.name);
   for (const auto& j : m.joints)
-    joints.append(py::dict(py::arg("name") = j.name, py::arg("type") = JointTypeName(j.type),
+    joints.append(py::dict(py::arg("name") = j.name, py::arg("type") = j.type->name,
                            py::arg("body1") = m.BodyName(j.body1), py::arg("body2") = m.BodyName(j.body2)));
   py::list couplers;  // {name, type, joints}: the couplers between joint coordinates
   for (const auto& c : m.couplers) {

@@ -161,27 +161,23 @@ std::string LoopJoints(const Model& m, const AssemblyLoop& loop) {
 std::string PolygonShortfall(const Model& m, const AssemblyLoop& loop) {
   std::vector<int> joints = loop.path;
   joints.push_back(loop.joint);
-  auto point_joint = [](JointType t) {
-    return t == JointType::Revolute || t == JointType::Spherical || t == JointType::Universal ||
-           t == JointType::Distance;
-  };
   std::vector<std::pair<double, BodyIndex>> sides;  // length, body (kGround - 1: a distance link)
   const Joint& close = m.joints[loop.joint];        // walking body1 → path → body2 → this joint
   BodyIndex walk = close.body1;
   Vec3 last = close.frame1.origin;
-  for (int j : joints) if (!point_joint(m.joints[j].type)) return "";
+  for (int j : joints) if (!m.joints[j].type->HoldsPoints()) return "";
   // Sides along the path from body1, then the closing joint.
   for (int j : loop.path) {
     const Joint& jt = m.joints[j];
     const bool from1 = jt.body1 == walk;
     const Vec3 here = from1 ? jt.frame1.origin : jt.frame2.origin;
     sides.emplace_back((here - last).norm(), walk);
-    if (jt.type == JointType::Distance) sides.emplace_back(jt.length, kGround - 1);
+    if (jt.type->scalar == JointScalar::Length) sides.emplace_back(jt.length, kGround - 1);
     walk = from1 ? jt.body2 : jt.body1;
     last = from1 ? jt.frame2.origin : jt.frame1.origin;
   }
   sides.emplace_back((close.frame2.origin - last).norm(), close.body2);
-  if (close.type == JointType::Distance) sides.emplace_back(close.length, kGround - 1);
+  if (close.type->scalar == JointScalar::Length) sides.emplace_back(close.length, kGround - 1);
   double total = 0;
   size_t longest = 0;
   for (size_t k = 0; k < sides.size(); ++k) {

@@ -120,7 +120,7 @@ double JointCoordinate(const SystemState& s, const Joint& j) {
   const BodyKinematics& k1 = s.Kin(j.body1);
   const BodyKinematics& k2 = s.Kin(j.body2);
   const Vec3 h1 = k1.A * j.frame1.h;
-  if (j.type == JointType::Prismatic)
+  if (j.type->coordinates == JointCoordinates::Slide)
     return ((k2.r[0] + k2.A * j.frame2.origin) - (k1.r[0] + k1.A * j.frame1.origin)).dot(h1);
   const Vec3 f1 = k1.A * j.frame1.f, f2 = k2.A * j.frame2.f;
   return std::atan2(h1.dot(f1.cross(f2)), f1.dot(f2));
@@ -133,11 +133,11 @@ void SetJointCoordinate(const Joint& j, double value, SystemState* s) {
   const BodyKinematics& k1 = s->Kin(j.body1);
   const Vec3 h = k1.A * j.frame1.h, o = k1.r[0] + k1.A * j.frame1.origin;
   double delta = value - JointCoordinate(*s, j);
-  if (j.type == JointType::Revolute) delta = std::remainder(delta, 2 * M_PI);
+  if (j.type->coordinates == JointCoordinates::Angle) delta = std::remainder(delta, 2 * M_PI);
   const BodyIndex moved = j.body2 != kGround ? j.body2 : j.body1;
   if (j.body2 == kGround) delta = -delta;
   BodyKinematics& k = s->bodies[moved];
-  if (j.type == JointType::Prismatic) {
+  if (j.type->coordinates == JointCoordinates::Slide) {
     k.SetPose(k.r[0] + delta * h, k.p);
     return;
   }
@@ -167,7 +167,7 @@ bool HeldThenClosed(const ConstraintSystem& sys, const SolveOptions& rough,
     const Joint& j = model.joints[joint];
     Driver d;
     d.name = "branch hint " + j.name;
-    d.kind = j.type == JointType::Revolute ? DriverKind::JointRotation : DriverKind::JointTranslation;
+    d.kind = j.type->coordinates == JointCoordinates::Angle ? DriverKind::JointRotation : DriverKind::JointTranslation;
     d.joint = joint;
     d.body1 = j.body1, d.body2 = j.body2, d.frame1 = j.frame1, d.frame2 = j.frame2;
     hinted.drivers.push_back(d);
@@ -191,7 +191,7 @@ double HintGap(const Model& model, const SystemState& s, const std::vector<std::
   for (const auto& [joint, value] : hints) {
     const Joint& j = model.joints[joint];
     const double d = JointCoordinate(s, j) - value;
-    gap += j.type == JointType::Revolute ? std::abs(std::remainder(d, 2 * M_PI)) : std::abs(d) / model.characteristic_length;
+    gap += j.type->coordinates == JointCoordinates::Angle ? std::abs(std::remainder(d, 2 * M_PI)) : std::abs(d) / model.characteristic_length;
   }
   return gap;
 }
@@ -201,8 +201,7 @@ double HintGap(const Model& model, const SystemState& s, const std::vector<std::
 std::vector<bool> AxesAlong(const Model& m, const SystemState& s) {
   std::vector<bool> out;
   for (const Joint& j : m.joints)
-    if (j.type == JointType::Revolute || j.type == JointType::Prismatic || j.type == JointType::Cylindrical ||
-        j.type == JointType::Screw)
+    if (j.type->frames == JointFrameRule::Axis)
       out.push_back((s.Kin(j.body1).A * j.frame1.h).dot(s.Kin(j.body2).A * j.frame2.h) > 0);
   return out;
 }
@@ -258,7 +257,7 @@ bool AssembleFlippedBranch(const ConstraintSystem& sys, const SolveOptions& solv
   const double L = model.characteristic_length;
   for (int joint : model.analysis->branch_flips) {
     const Joint& j = model.joints[joint];
-    const bool turn = j.type == JointType::Revolute;
+    const bool turn = j.type->coordinates == JointCoordinates::Angle;
     const double c0 = JointCoordinate(*s, j), step = turn ? 10 * M_PI / 180 : 0.05 * L;
     bool flipped = false;
     for (int k = 1; k <= (turn ? 18 : 40) && !flipped; ++k)
@@ -304,7 +303,7 @@ std::vector<double> ContinuationTargets(const Model& model, const std::vector<do
   if (ContinuationSteps(model, from, to) <= kMaxContinuationSteps) return to;
   // A screw couples its angle to a slide: its turns cannot be dropped.
   for (const Joint& j : model.joints)
-    if (j.type == JointType::Screw) return to;
+    if (j.type->scalar == JointScalar::Pitch) return to;
   for (size_t d = 0; d < model.drivers.size(); ++d)
     if (IsAngleDriver(model.drivers[d])) to[d] = from[d] + std::remainder(to[d] - from[d], 2 * M_PI);
   return to;

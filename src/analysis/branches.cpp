@@ -14,9 +14,7 @@ namespace {
 // Every axis-carrying joint with its two axes pointing the same way.
 bool AxesAsDrawn(const Model& m, const SystemState& s) {
   for (const Joint& j : m.joints) {
-    if (j.type != JointType::Revolute && j.type != JointType::Prismatic && j.type != JointType::Cylindrical &&
-        j.type != JointType::Screw)
-      continue;
+    if (j.type->frames != JointFrameRule::Axis) continue;
     if ((s.Kin(j.body1).A * j.frame1.h).dot(s.Kin(j.body2).A * j.frame2.h) < 0) return false;
   }
   return true;

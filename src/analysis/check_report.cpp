@@ -47,7 +47,7 @@ std::vector<JointPoint> JointPointsOf(const Model& m, BodyIndex b, const std::ve
   for (size_t index : joints_on[b]) {
     const Joint& j = m.joints[index];
     const JointFrame& f = j.body1 == b ? j.frame1 : j.frame2;
-    const bool axis = j.type != JointType::Spherical && j.type != JointType::Distance;
+    const bool axis = j.type->frames != JointFrameRule::Point && j.type->frames != JointFrameRule::TwoPoints;
     out.push_back({j.name, body.position + A * f.origin, A * f.h, axis});
   }
   return out;
@@ -146,7 +146,7 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   r.bodies = m.num_bodies();
   r.drivers = static_cast<int>(m.drivers.size());
   for (const auto& j : m.joints) {
-    const std::string type = JointTypeName(j.type);
+    const std::string& type = j.type->name;
     auto it = std::find_if(r.joints.begin(), r.joints.end(), [&](const auto& kv) { return kv.first == type; });
     if (it == r.joints.end()) r.joints.emplace_back(type, 1);
     else ++it->second;
@@ -154,7 +154,7 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   std::sort(r.joints.begin(), r.joints.end());  // the JSON object's key order
   r.grubler = CalcGrublerCount(m);
   r.couplers = static_cast<int>(m.couplers.size());
-  for (const auto& j : m.joints) r.joint_equations += EquationsRemoved(j.type);
+  for (const auto& j : m.joints) r.joint_equations += j.type->Rows();
   r.dof_after_drivers_count = r.grubler - r.drivers;
   r.planar = FindPlanarStructure(m);
   r.mobility = CalcMobility(m);

@@ -47,15 +47,6 @@ template <>
 struct EnumNames<ReportFormat> {
   static constexpr EnumName<ReportFormat> kAll[] = {{ReportFormat::Text, "text"}, {ReportFormat::Json, "json"}};
 };
-// The file format's joint types (docs/format.md); model.cpp's JointTypeName gives the
-// same names (a test holds them equal until the joint descriptors own them).
-template <>
-struct EnumNames<JointType> {
-  static constexpr EnumName<JointType> kAll[] = {
-      {JointType::Revolute, "revolute"},       {JointType::Prismatic, "prismatic"}, {JointType::Screw, "screw"},
-      {JointType::Cylindrical, "cylindrical"}, {JointType::Universal, "universal"}, {JointType::Spherical, "spherical"},
-      {JointType::Planar, "planar"},           {JointType::Distance, "distance"}};
-};
 // Why a run ended (Python's RunStop.kind, pickled motions).
 template <>
 struct EnumNames<StopKind> {

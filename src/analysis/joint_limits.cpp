@@ -7,7 +7,7 @@
 
 namespace mechkin {
 
-bool LimitOnRotation(JointType t) { return t == JointType::Revolute || t == JointType::Screw; }
+bool LimitOnRotation(const JointDescriptor* t) { return t->limit == JointLimit::Angle; }
 
 // The rotation driver's angle θ = atan2(g₁ᵀf₂, f₁ᵀf₂) (§3.9) continued from ref, or
 // the slide h₁ᵀd (§3.8) between the joint frames.

@@ -28,7 +28,7 @@ double LimitedCoordinate(const Joint& j, const SystemState& s, double ref);
 /// Its first time derivative at s (velocities solved).
 double LimitedCoordinateRate(const Joint& j, const SystemState& s);
 /// The joint's limits act on its rotation (revolute, screw) rather than its slide.
-bool LimitOnRotation(JointType t);
+bool LimitOnRotation(const JointDescriptor* t);
 
 class JointLimitWatch {
  public:

@@ -32,7 +32,7 @@ std::array<Jet, 3> VecJet(const Vec3* d, int order) {
 bool IsAngleOutput(const Model& model, int output) {
   const Output& x = model.outputs[output];
   return x.kind == OutputKind::Angle ||
-         (x.kind == OutputKind::JointCoordinate && model.joints[x.joint].type == JointType::Revolute);
+         (x.kind == OutputKind::JointCoordinate && model.joints[x.joint].type->coordinates == JointCoordinates::Angle);
 }
 
 // d = P2 − P1 of an output's two points: |d| on jets (SI).
@@ -194,24 +194,37 @@ void MotionLayout::AddOutput(const Model& model, int o) {
   } else if (out.kind == OutputKind::Orientation) {
     AddOrientation(out, o, A);
   } else {
-    const JointType jt = model.joints[out.joint].type;
-    if (jt == JointType::Spherical) {
+    AddJointCoordinates(model.joints[out.joint].type->coordinates, out, o, L, A);
+  }
+}
+
+// A joint output's columns, as its descriptor's coordinates say.
+void MotionLayout::AddJointCoordinates(JointCoordinates c, const Output& out, int o, const std::string& L,
+                                       const std::string& A) {
+  switch (c) {
+    case JointCoordinates::Orientation:
       AddOrientation(out, o, A);
-    } else if (jt == JointType::Universal) {
+      break;
+    case JointCoordinates::TwoAngles:
       for (int a = 0; a < 2; ++a)
         AddSeries(Quantity::JointAngle, out.name, o, out.name + ".angle" + std::to_string(a + 1), a, A, 0);
-    } else if (jt == JointType::Planar) {
+      break;
+    case JointCoordinates::PlaneSlidesAndAngle:
       AddSeries(Quantity::JointSlide, out.name, o, out.name + ".slide1", 0, L, 0);
       AddSeries(Quantity::JointSlide, out.name, o, out.name + ".slide2", 1, L, 0);
       AddSeries(Quantity::JointAngle, out.name, o, out.name + ".angle", -1, A, 0);
-    } else if (jt == JointType::Revolute) {
+      break;
+    case JointCoordinates::Angle:
       AddSeries(Quantity::JointAngle, out.name, o, out.name, -1, A, 0);
-    } else if (jt == JointType::Prismatic) {
+      break;
+    case JointCoordinates::Slide:
       AddSeries(Quantity::JointSlide, out.name, o, out.name, -1, L, 0);
-    } else {
+      break;
+    case JointCoordinates::AngleAndSlide:
+    case JointCoordinates::None:  // compile refuses a distance link's output
       AddSeries(Quantity::JointAngle, out.name, o, out.name + ".angle", -1, A, 0);
       AddSeries(Quantity::JointSlide, out.name, o, out.name + ".slide", -1, L, 0);
-    }
+      break;
   }
 }
 
@@ -513,13 +526,14 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
   }
   if (op.kind == OutputKind::Angle) return AngleValues(s, o, out);
   const Joint& jt = model_.joints[op.joint];
-  if (jt.type == JointType::Spherical) return OrientationValues(s, o, out);
-  if (jt.type == JointType::Universal) return UniversalValues(s, o, out);
-  if (jt.type == JointType::Planar) {
+  const JointCoordinates c = jt.type->coordinates;
+  if (c == JointCoordinates::Orientation) return OrientationValues(s, o, out);
+  if (c == JointCoordinates::TwoAngles) return UniversalValues(s, o, out);
+  if (c == JointCoordinates::PlaneSlidesAndAngle) {
     out = PlanarSlides(s, o, out);
     // and the angle about the normal, below, as for a revolute joint
   }
-  if (jt.type != JointType::Prismatic) {
+  if (c != JointCoordinates::Slide) {
     // θ = atan2(g_iᵀf_j, f_iᵀf_j), continuous from the design pose;
     // θ^(k) = h'_jᵀω_j'^(k−1) − h'_iᵀω_i'^(k−1) on the joint.
     const Vec3 fj = b2.A * jt.frame2.f;
@@ -528,7 +542,7 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
     for (int k = 1; k <= order; ++k) *out++ = (jt.frame2.h.dot(b2.w[k - 1]) - jt.frame1.h.dot(b1.w[k - 1])) * ang;
     if (order >= 1) angle_rate_[o] = jt.frame2.h.dot(b2.w[0]) - jt.frame1.h.dot(b1.w[0]);
   }
-  if (jt.type != JointType::Revolute && jt.type != JointType::Planar) {
+  if (c != JointCoordinates::Angle && c != JointCoordinates::PlaneSlidesAndAngle) {
     const Jet sl = SlideJet(s, jt, order);
     for (int k = 0; k <= order; ++k) *out++ = sl.Derivative(k) * len;
   }
@@ -597,7 +611,7 @@ Jet RowEvaluator::ScalarOutputJet(const SystemState& s, int o) const {
     }
   }
   const Joint& jt = model_.joints[op.joint];
-  if (jt.type == JointType::Prismatic) return SlideJet(s, jt, order);
+  if (jt.type->coordinates == JointCoordinates::Slide) return SlideJet(s, jt, order);
   // Revolute: θ^(k) = h'_jᵀω_j'^(k−1) − h'_iᵀω_i'^(k−1).
   static constexpr double kInvFact[] = {1, 1, 0.5, 1.0 / 6, 1.0 / 24};
   Jet j;

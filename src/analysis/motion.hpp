@@ -124,6 +124,8 @@ class MotionLayout {
   void AddSensitivities();
   void AddVelocityRatio(const Model& model, int o);
   void AddOrientation(const Output& out, int o, const std::string& angle_unit);
+  void AddJointCoordinates(JointCoordinates c, const Output& out, int o, const std::string& length_unit,
+                           const std::string& angle_unit);
   void AddRated(Quantity q, const std::string& subject, int index, const std::string& name, int component,
                 const std::string& unit);
   void AddSeries(Quantity q, const std::string& subject, int index, const std::string& name, int component,

@@ -17,57 +17,28 @@ void Add(std::vector<ConstraintEntry>* out, std::unique_ptr<Constraint> c, bool 
   out->push_back(std::move(e));
 }
 
-// Haug's construction of each joint from primitives (constraints.md §5).
-void AddJoint(const Joint& jt, int index, std::vector<ConstraintEntry>* out) {
+const Vec3& Axis(const JointFrame& frame, FrameAxis axis) {
+  return axis == FrameAxis::F ? frame.f : axis == FrameAxis::G ? frame.g : frame.h;
+}
+
+// One primitive of a joint's descriptor as its family (constraints.md §3).
+std::unique_ptr<Constraint> MakePrimitive(const Joint& jt, const JointEquation& eq) {
   const BodyIndex i = jt.body1, j = jt.body2;
   const JointFrame &a = jt.frame1, &b = jt.frame2;
-  auto sph = [&] {
-    Add(out, std::make_unique<SphericalConstraint>(i, j, a.origin, b.origin), false, index,
-        {"translation along global x", "translation along global y", "translation along global z"});
-  };
-  // parallel-1: h_j ⟂ f_i and h_j ⟂ g_i keep h_j ∥ h_i.
-  auto parallel1 = [&] {
-    Add(out, std::make_unique<Dot1Constraint>(i, j, a.f, b.h), false, index, {"rotation about its frame's g axis"});
-    Add(out, std::make_unique<Dot1Constraint>(i, j, a.g, b.h), false, index, {"rotation about its frame's f axis"});
-  };
-  // parallel-2: P_j stays on the axis of i.
-  auto parallel2 = [&] {
-    Add(out, std::make_unique<Dot2Constraint>(i, j, a.f, a.origin, b.origin), false, index,
-        {"translation along its frame's f axis"});
-    Add(out, std::make_unique<Dot2Constraint>(i, j, a.g, a.origin, b.origin), false, index,
-        {"translation along its frame's g axis"});
-  };
-  switch (jt.type) {
-    case JointType::Spherical: sph(); break;
-    case JointType::Distance:
-      Add(out, std::make_unique<DistanceConstraint>(i, j, a.origin, b.origin, jt.length), false, index,
-          {"distance between its two points"});
-      break;
-    case JointType::Universal:
-      sph();
-      Add(out, std::make_unique<Dot1Constraint>(i, j, a.h, b.h), false, index,
-          {"rotation about the common normal of its two axes"});
-      break;
-    case JointType::Revolute: sph(); parallel1(); break;
-    case JointType::Cylindrical: parallel1(); parallel2(); break;
-    case JointType::Prismatic:
-      parallel1();
-      parallel2();
-      // f_iᵀg_j = −sin θ: regular at θ = 0 (§5, "Prismatic with aligned frames").
-      Add(out, std::make_unique<Dot1Constraint>(i, j, a.f, b.g), false, index, {"rotation about its axis"});
-      break;
-    case JointType::Screw:
-      parallel1();
-      parallel2();
-      Add(out, std::make_unique<ScrewConstraint>(i, j, a, b, jt.pitch), false, index,
-          {"slide coupled to rotation by the pitch"});
-      break;
-    case JointType::Planar:
-      parallel1();
-      Add(out, std::make_unique<Dot2Constraint>(i, j, a.h, a.origin, b.origin), false, index,
-          {"translation along its normal"});
-      break;
+  switch (eq.primitive) {
+    case JointPrimitive::Spherical: return std::make_unique<SphericalConstraint>(i, j, a.origin, b.origin);
+    case JointPrimitive::Distance: return std::make_unique<DistanceConstraint>(i, j, a.origin, b.origin, jt.length);
+    case JointPrimitive::Dot1: return std::make_unique<Dot1Constraint>(i, j, Axis(a, eq.first), Axis(b, eq.second));
+    case JointPrimitive::Dot2: return std::make_unique<Dot2Constraint>(i, j, Axis(a, eq.first), a.origin, b.origin);
+    case JointPrimitive::Screw: return std::make_unique<ScrewConstraint>(i, j, a, b, jt.pitch);
   }
+  throw std::logic_error("joint primitive out of range");
+}
+
+// Haug's construction of each joint from primitives (constraints.md §5), as its
+// descriptor lists them.
+void AddJoint(const Joint& jt, int index, std::vector<ConstraintEntry>* out) {
+  for (const JointEquation& eq : jt.type->equations) Add(out, MakePrimitive(jt, eq), false, index, eq.rows);
 }
 
 CoordinateTerm TermOf(const Model& model, const CouplerCoordinate& cc) {
@@ -154,7 +125,7 @@ std::string ConstraintSystem::DescribeRow(int row) const {
     return "coupler `" + cp.name + "` (" + CouplerKindName(cp.kind) + "): " + e.row_what[r];
   }
   const Joint& j = model_->joints[e.source];
-  return "joint `" + j.name + "` (" + JointTypeName(j.type) + "): " + e.row_what[r];
+  return "joint `" + j.name + "` (" + j.type->name + "): " + e.row_what[r];
 }
 
 SystemState::SystemState(const ConstraintSystem& system)

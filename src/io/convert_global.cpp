@@ -101,22 +101,22 @@ std::string Mismatch(const Context& ctx, const Joint& jm) {
   const JointFrame g1 = GlobalFrame(ctx, jm.body1, jm.frame1), g2 = GlobalFrame(ctx, jm.body2, jm.frame2);
   const double gap = (g1.origin - g2.origin).norm(), tol = 1e-9;
   std::ostringstream why;
-  if (jm.type != JointType::Distance && gap > tol * ctx.model.characteristic_length)
+  const JointFrameRule rule = jm.type->frames;
+  const bool one_axis = rule == JointFrameRule::Axis || rule == JointFrameRule::Normal;  // h shared by both
+  if (rule != JointFrameRule::TwoPoints && gap > tol * ctx.model.characteristic_length)
     why << "its markers are " << gap / ctx.unit << " " << ctx.model.units.length_name << " apart at the design pose";
-  else if (jm.type != JointType::Distance && jm.type != JointType::Spherical && jm.type != JointType::Universal &&
-           (g1.h - g2.h).norm() > tol)
+  else if (one_axis && (g1.h - g2.h).norm() > tol)
     why << "its markers' axes are " << Degrees(g1.h, g2.h) << " deg apart at the design pose";
-  else if (jm.type != JointType::Distance && jm.type != JointType::Spherical && jm.type != JointType::Universal &&
-           (g1.f - g2.f).norm() > tol && CoordinateObserved(ctx, jm.name))
+  else if (one_axis && (g1.f - g2.f).norm() > tol && CoordinateObserved(ctx, jm.name))
     why << "its markers are turned " << Degrees(g1.f, g2.f)
         << " deg about the axis at the design pose (its coordinate is not 0 there)";
   if (!why.str().empty() || !NamedByJointOutput(ctx, jm.name)) return why.str();
   bool own_axes = true;
-  if (jm.type == JointType::Universal)
+  if (rule == JointFrameRule::CrossAxes)
     own_axes = (g1.f - AnyPerpendicular(g1.h)).norm() <= tol &&
                (g2.f - MakeFrame(Vec3::Zero(), g2.h, g1.h).f).norm() <= tol;
-  if (jm.type == JointType::Planar) own_axes = (g1.f - AnyPerpendicular(g1.h)).norm() <= tol;
-  if (jm.type == JointType::Spherical)
+  if (rule == JointFrameRule::Normal) own_axes = (g1.f - AnyPerpendicular(g1.h)).norm() <= tol;
+  if (rule == JointFrameRule::Point)
     own_axes = (g1.f - Vec3::UnitX()).norm() <= tol && (g1.h - Vec3::UnitZ()).norm() <= tol &&
                (g2.f - Vec3::UnitX()).norm() <= tol && (g2.h - Vec3::UnitZ()).norm() <= tol;
   if (!own_axes) why << "a joint output reads its markers' x axes, which the global form does not keep";
@@ -136,18 +136,19 @@ Json JointOnGlobal(const Json& joint, const Json& geometry) {
 
 Json GlobalGeometry(const Context& ctx, const Joint& jm, const MarkerSpec& m1, const MarkerSpec& m2) {
   Json g = Json::object();
-  if (jm.type == JointType::Distance) {
+  const JointFrameRule rule = jm.type->frames;
+  if (rule == JointFrameRule::TwoPoints) {
     g["point1"] = GlobalPoint(ctx, jm.body1, m1, jm.frame1.origin);
     g["point2"] = GlobalPoint(ctx, jm.body2, m2, jm.frame2.origin);
     return g;
   }
   g["origin"] = GlobalPoint(ctx, jm.body1, m1, jm.frame1.origin);
-  if (jm.type == JointType::Universal) {
+  if (rule == JointFrameRule::CrossAxes) {
     g["axis1"] = GlobalAxis(ctx, jm.body1, m1, jm.frame1.h);
     g["axis2"] = GlobalAxis(ctx, jm.body2, m2, jm.frame2.h);
-  } else if (jm.type == JointType::Planar) {
+  } else if (rule == JointFrameRule::Normal) {
     g["normal"] = GlobalAxis(ctx, jm.body1, m1, jm.frame1.h);
-  } else if (jm.type != JointType::Spherical) {
+  } else if (rule != JointFrameRule::Point) {
     g["axis"] = GlobalAxis(ctx, jm.body1, m1, jm.frame1.h);
   }
   return g;
@@ -240,7 +241,7 @@ void RebaseHints(const Context& ctx, Json* doc) {
     const auto it = ctx.joint_index.find(item.key());
     if (it == ctx.joint_index.end() || !item.value().is_number()) continue;
     const Joint& jm = ctx.model.joints[it->second];
-    if (!jm.on_markers || jm.type != JointType::Revolute) continue;
+    if (!jm.on_markers || jm.type->coordinates != JointCoordinates::Angle) continue;
     const double zero = DesignAngle(GlobalFrame(ctx, jm.body1, jm.frame1), GlobalFrame(ctx, jm.body2, jm.frame2));
     if (std::abs(zero) < 1e-12) continue;
     item.value() = Number(item.value().get<double>() - zero / ctx.model.units.angle_to_si, 1);

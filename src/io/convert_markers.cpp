@@ -59,15 +59,15 @@ struct Side {
 Side JointSide(const JointSpec& js, const Joint& jm, int side) {
   static const std::optional<Vector3Spec> kNone;
   Side s{side == 1 ? jm.body1 : jm.body2, side == 1 ? &jm.frame1 : &jm.frame2, &js.origin, &kNone, &kNone};
-  switch (jm.type) {
-    case JointType::Distance: s.point = side == 1 ? &js.point1 : &js.point2; break;
-    case JointType::Spherical: break;
-    case JointType::Planar: s.axis = &js.normal; break;
-    case JointType::Universal:
+  switch (jm.type->frames) {
+    case JointFrameRule::TwoPoints: s.point = side == 1 ? &js.point1 : &js.point2; break;
+    case JointFrameRule::Point: break;
+    case JointFrameRule::Normal: s.axis = &js.normal; break;
+    case JointFrameRule::CrossAxes:
       s.axis = side == 1 ? &js.axis1 : &js.axis2;
       if (side == 2) s.x_hint = &js.axis1;
       break;
-    default: s.axis = &js.axis; break;
+    case JointFrameRule::Axis: s.axis = &js.axis; break;
   }
   return s;
 }
@@ -77,10 +77,11 @@ Json MarkerOf(const Context& ctx, const JointSpec& js, const Joint& jm, int side
   const Side s = JointSide(js, jm, side);
   const std::string ptr = js.pointer;
   Json m = Json::object();
-  m["point"] = LocalPoint(ctx, s.body, **s.point, s.frame->origin, ptr + (jm.type == JointType::Distance
+  const bool points = jm.type->frames == JointFrameRule::TwoPoints;
+  m["point"] = LocalPoint(ctx, s.body, **s.point, s.frame->origin, ptr + (points
                                                                               ? (side == 1 ? "/point1" : "/point2")
                                                                               : "/origin"));
-  if (jm.type == JointType::Distance) return m;
+  if (points) return m;
   const JointFrame& fr = *s.frame;
   if (*s.axis)
     m["axis"] = LocalDirection(ctx, s.body, **s.axis, fr.h, ptr + "/axis");
@@ -94,7 +95,7 @@ Json MarkerOf(const Context& ctx, const JointSpec& js, const Joint& jm, int side
   } else {
     m["x_axis"] = NumberVector(fr.f, 1);
     if (*s.axis && UsesParameters(*s.axis))
-      ctx.Note(ptr + (jm.type == JointType::Planar ? "/normal" : "/axis"),
+      ctx.Note(ptr + (jm.type->frames == JointFrameRule::Normal ? "/normal" : "/axis"),
                "the frame's x direction (x_axis of marker" + std::to_string(side) +
                    ") is written at the current parameter values");
   }

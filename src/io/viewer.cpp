@@ -136,7 +136,8 @@ void WriteJoints(const Model& model, double L, Json* j) {
     const Joint& jt = model.joints[k];
     const Vec3 axis2 = design_A(jt.body1).transpose() * (design_A(jt.body2) * jt.frame2.h);
     j->Raw(k ? ",{" : "{");
-    j->Key("name"), j->Str(jt.name), j->Raw(","), j->Key("type"), j->Str(JointTypeName(jt.type)), j->Raw(",");
+    j->Key("name"), j->Str(jt.name), j->Raw(","), j->Key("type"), j->Str(jt.type->name), j->Raw(",");
+    j->Key("glyph"), j->Str(jt.type->glyph), j->Raw(",");
     j->Key("body1"), j->Num(jt.body1), j->Raw(","), j->Key("body2"), j->Num(jt.body2), j->Raw(",");
     j->Key("origin"), j->Vec(jt.frame1.origin, L), j->Raw(","), j->Key("origin2"), j->Vec(jt.frame2.origin, L), j->Raw(",");
     j->Key("axis"), j->Vec(jt.frame1.h, 1), j->Raw(","), j->Key("axis2"), j->Vec(axis2, 1), j->Raw("}");

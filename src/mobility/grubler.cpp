@@ -9,7 +9,7 @@ namespace mechkin {
 
 int CalcGrublerCount(const Model& model) {
   int m = 6 * model.num_bodies();
-  for (const auto& j : model.joints) m -= EquationsRemoved(j.type);
+  for (const auto& j : model.joints) m -= j.type->Rows();
   return m - static_cast<int>(model.couplers.size());  // one equation per coupler (§3.11)
 }
 
@@ -23,7 +23,8 @@ Vec3 GlobalAxis(const Model& m, const Joint& j) {
   return j.body1 == kGround ? h : Vec3(CalcA(m.bodies[j.body1].euler) * h);
 }
 
-bool TurnsAboutAxis(JointType t) { return t == JointType::Revolute || t == JointType::Planar; }
+// Its axis along the plane's normal in a planar mechanism (a revolute or planar joint).
+bool TurnsAboutAxis(const Joint& j) { return j.type->planar == PlanarRole::Turn || j.type->planar == PlanarRole::Plane; }
 
 // The plane's normal: a revolute or planar joint's axis; else the
 // cross product of two prismatic axes that are not parallel; else any direction
@@ -31,8 +32,8 @@ bool TurnsAboutAxis(JointType t) { return t == JointType::Revolute || t == Joint
 std::optional<Vec3> PlaneNormal(const Model& m) {
   std::vector<Vec3> slides;
   for (const Joint& j : m.joints) {
-    if (TurnsAboutAxis(j.type)) return GlobalAxis(m, j);
-    if (j.type == JointType::Prismatic) slides.push_back(GlobalAxis(m, j));
+    if (TurnsAboutAxis(j)) return GlobalAxis(m, j);
+    if (j.type->planar == PlanarRole::Slide) slides.push_back(GlobalAxis(m, j));
   }
   if (slides.empty()) return std::nullopt;
   for (const Vec3& s : slides) {
@@ -50,19 +51,19 @@ std::optional<PlanarStructure> FindPlanarStructure(const Model& m) {
   PlanarStructure p;
   p.normal = *normal;
   for (const Joint& j : m.joints) {
-    if (j.type == JointType::Distance) {
+    if (j.type->planar == PlanarRole::Link) {
       ++p.higher_pairs;
       continue;
     }
     const Vec3 axis = GlobalAxis(m, j);
-    if (TurnsAboutAxis(j.type)) {
+    if (TurnsAboutAxis(j)) {
       if (axis.cross(p.normal).norm() > kParallel) return std::nullopt;
-    } else if (j.type == JointType::Prismatic) {
+    } else if (j.type->planar == PlanarRole::Slide) {
       if (std::abs(axis.dot(p.normal)) > kParallel) return std::nullopt;
     } else {
       return std::nullopt;  // spherical, universal, screw, cylindrical (its slide leaves any plane): spatial
     }
-    if (j.type == JointType::Planar) ++p.planar_joints;
+    if (j.type->planar == PlanarRole::Plane) ++p.planar_joints;
     else ++p.lower_pairs;
   }
   p.couplers = static_cast<int>(m.couplers.size());

@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "constraints/system.hpp"
+#include "joints/registry.hpp"
 #include "kinematics/position.hpp"
 #include "kinematics/sparse_rank.hpp"
 
@@ -69,26 +70,18 @@ std::pair<int, int> QuickMobility(const Model& model) {
   return {6 * model.num_bodies() - info.rank, joints.num_rows() - info.rank};
 }
 
-// Joint types that keep a joint's frame and remove fewer equations.
-std::vector<JointType> LooserTypes(JointType t) {
-  switch (t) {
-    case JointType::Revolute:
-      return {JointType::Cylindrical, JointType::Universal, JointType::Spherical};
-    case JointType::Prismatic:
-      return {JointType::Cylindrical};
-    case JointType::Screw:
-      return {JointType::Cylindrical};
-    case JointType::Universal:
-      return {JointType::Spherical};
-    case JointType::Cylindrical:
-      return {JointType::Planar};
-    default:
-      return {};
-  }
+// Joint types that keep a joint's frame and remove fewer equations (its descriptor's
+// relaxations, looked up once a suggestion is wanted).
+std::vector<const JointDescriptor*> LooserTypes(const JointDescriptor* t) {
+  std::vector<const JointDescriptor*> out;
+  for (const std::string& name : t->relaxations)
+    if (const JointDescriptor* d = FindJointType(name)) out.push_back(d);
+  return out;
 }
 
-void Loosen(Joint* j, JointType t) {
-  if (t == JointType::Universal) j->frame2.h = j->frame2.f;  // second cross axis ⟂ the first
+void Loosen(Joint* j, const JointDescriptor* t) {
+  // Cross axes: body2's h becomes the second cross axis, ⟂ the first (the frames' f).
+  if (t->frames == JointFrameRule::CrossAxes) j->frame2.h = j->frame2.f;
   j->type = t;
 }
 
@@ -103,14 +96,13 @@ std::string SuggestRemoval(const Model& model, const MobilityReport& rep) {
           std::find(e.fixed_by.begin(), e.fixed_by.end(), name) != e.fixed_by.end())
         candidates.insert(static_cast<int>(j));
     }
-  auto describe = [&](int j, JointType t) {
-    return "joint `" + model.joints[j].name + "` (" + JointTypeName(model.joints[j].type) + ") by a " +
-           JointTypeName(t) + " joint";
+  auto describe = [&](int j, const JointDescriptor* t) {
+    return "joint `" + model.joints[j].name + "` (" + model.joints[j].type->name + ") by a " + t->name + " joint";
   };
   const int r = rep.redundant;
   for (int j : candidates)
-    for (JointType t : LooserTypes(model.joints[j].type)) {
-      if (EquationsRemoved(model.joints[j].type) - EquationsRemoved(t) != r) continue;
+    for (const JointDescriptor* t : LooserTypes(model.joints[j].type)) {
+      if (model.joints[j].type->Rows() - t->Rows() != r) continue;
       Model m = model;
       Loosen(&m.joints[j], t);
       if (QuickMobility(m) == std::pair<int, int>{rep.mobility, 0})
@@ -120,10 +112,9 @@ std::string SuggestRemoval(const Model& model, const MobilityReport& rep) {
   for (int j1 : candidates)
     for (int j2 : candidates) {
       if (j2 <= j1) continue;
-      for (JointType t1 : LooserTypes(model.joints[j1].type))
-        for (JointType t2 : LooserTypes(model.joints[j2].type)) {
-          const int removed = EquationsRemoved(model.joints[j1].type) - EquationsRemoved(t1) +
-                              EquationsRemoved(model.joints[j2].type) - EquationsRemoved(t2);
+      for (const JointDescriptor* t1 : LooserTypes(model.joints[j1].type))
+        for (const JointDescriptor* t2 : LooserTypes(model.joints[j2].type)) {
+          const int removed = model.joints[j1].type->Rows() - t1->Rows() + model.joints[j2].type->Rows() - t2->Rows();
           if (removed != r) continue;
           Model m = model;
           Loosen(&m.joints[j1], t1);
@@ -442,7 +433,7 @@ int DanglingFreedoms(const Model& model, bool* all_dangling) {
     for (size_t j : joints_of[b]) {
       if (joint_gone[j]) continue;
       joint_gone[j] = 1;
-      freedoms += 6 - EquationsRemoved(model.joints[j].type);
+      freedoms += 6 - model.joints[j].type->Rows();
       const BodyIndex other = model.joints[j].body1 == b ? model.joints[j].body2 : model.joints[j].body1;
       if (other != kGround && --degree[other] <= 1) leaves.push_back(other);
     }
@@ -572,7 +563,7 @@ bool RecordAssembly(const SolveSummary& assembled, int equations, MobilityReport
 std::string OddAxisOut(const Model& model, const std::vector<std::string>& locking) {
   std::vector<std::pair<std::string, Vec3>> axes;
   for (const auto& jt : model.joints) {
-    const bool has_axis = jt.type == JointType::Revolute || jt.type == JointType::Cylindrical || jt.type == JointType::Screw;
+    const bool has_axis = jt.type->turns;
     if (!has_axis || std::find(locking.begin(), locking.end(), jt.name) == locking.end()) continue;
     const Mat3 A = jt.body1 == kGround ? Mat3::Identity() : CalcA(model.bodies[jt.body1].euler);
     axes.emplace_back(jt.name, (A * jt.frame1.h).normalized());

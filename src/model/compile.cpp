@@ -300,12 +300,12 @@ void Compiler::CompileBranch(const BranchSpec& b, Analysis* an) {
   for (const auto& [name, value] : b.joints) {
     const auto joint = BranchJoint(name, value.pointer);
     if (!joint) continue;
-    const JointType t = model_.joints[*joint].type;
+    const JointDescriptor& t = *model_.joints[*joint].type;
     const auto v = Value(value);
     if (!v) continue;
     // A hint beyond one turn (or beyond the coordinates' 1e12 m) names no branch the
     // assembly can compare with: 1e308 was silently ignored.
-    const bool turn = t == JointType::Revolute;
+    const bool turn = t.coordinates == JointCoordinates::Angle;
     const double si = *v * (turn ? angle_ : length_);
     if (!(std::abs(si) <= (turn ? 2 * M_PI * (1 + 1e-12) : kMaxCoordinate))) {
       Error(value.pointer, "branch hint " + FormatNumber(*v) + " " + (turn ? model_.units.angle_name : model_.units.length_name) +
@@ -329,9 +329,9 @@ std::optional<int> Compiler::BranchJoint(const std::string& name, const std::str
     Error(p, "unknown joint '" + Shorten(name) + "'", g.empty() ? "valid joints: " + Join(names) : "did you mean '" + g + "'?");
     return std::nullopt;
   }
-  const JointType t = model_.joints[it->second].type;
-  if (t != JointType::Revolute && t != JointType::Prismatic) {
-    Error(p, "branch hints are revolute angles or prismatic slides; '" + name + "' is " + JointTypeName(t),
+  const JointDescriptor& t = *model_.joints[it->second].type;
+  if (t.coordinates != JointCoordinates::Angle && t.coordinates != JointCoordinates::Slide) {
+    Error(p, "branch hints are revolute angles or prismatic slides; '" + name + "' is " + t.name,
           "hint a revolute or prismatic joint of the branch");
     return std::nullopt;
   }

@@ -17,7 +17,7 @@ void Compiler::WarnFarPoints() {
   for (size_t j = 0; j < model_.joints.size(); ++j) {
     const Joint& jt = model_.joints[j];
     auto [r, A] = Pose(jt.body1);
-    pts.push_back({r + A * jt.frame1.origin, "/joints/" + std::to_string(j) + (jt.type == JointType::Distance ? "/point1" : "/origin")});
+    pts.push_back({r + A * jt.frame1.origin, "/joints/" + std::to_string(j) + (jt.type->frames == JointFrameRule::TwoPoints ? "/point1" : "/origin")});
   }
   if (pts.size() < 4) return;
   Vec3 middle;
@@ -77,7 +77,7 @@ void Compiler::WarnOddLengths() {
   const double L = model_.characteristic_length;
   for (size_t j = 0; j < model_.joints.size(); ++j) {
     const Joint& jt = model_.joints[j];
-    if (jt.type != JointType::Distance || !(L > 0)) continue;
+    if (jt.type->scalar != JointScalar::Length || !(L > 0)) continue;
     if (jt.length > 1000 * L || jt.length < L / 1000)
       Warn("/joints/" + std::to_string(j), "distance link '" + jt.name + "' is " + FormatNumber(jt.length / length_) +
                                                    " " + model_.units.length_name + " long, " +

@@ -8,9 +8,6 @@ namespace mechkin {
 
 namespace {
 
-bool CanRotate(JointType t) { return t == JointType::Revolute || t == JointType::Cylindrical || t == JointType::Screw; }
-bool CanSlide(JointType t) { return t == JointType::Prismatic || t == JointType::Cylindrical || t == JointType::Screw; }
-
 std::optional<CouplerKind> KindOf(const std::string& type) {
   if (type == "gear") return CouplerKind::Gear;
   if (type == "belt") return CouplerKind::Belt;
@@ -46,16 +43,16 @@ std::optional<CouplerCoordinate> Compiler::CouplerTerm(const std::string& name, 
   const auto joint = CouplerJoint(name, ptr);
   if (!joint) return std::nullopt;
   const Joint& j = model_.joints[*joint];
-  const bool rot = CanRotate(j.type), slide = CanSlide(j.type);
+  const bool rot = j.type->turns, slide = j.type->slides;
   if (!rotation && rot && slide) {
-    Error(ptr, "joint '" + j.name + "' (" + JointTypeName(j.type) + ") has a rotation and a translation",
+    Error(ptr, "joint '" + j.name + "' (" + j.type->name + ") has a rotation and a translation",
           "say which one the coupling reads: \"coordinates\": [\"rotation\" or \"translation\", ...], one per joint");
     return std::nullopt;
   }
   const bool want_rotation = rotation.value_or(rot);
   if (want_rotation ? !rot : !slide) {
     const std::string what = rotation ? (want_rotation ? "a rotation" : "a translation") : "a single coordinate";
-    Error(ptr, "a " + type + " coupler needs " + what + ", and " + JointTypeName(j.type) + " joint '" + j.name +
+    Error(ptr, "a " + type + " coupler needs " + what + ", and " + j.type->name + " joint '" + j.name +
                    "' has none",
           want_rotation || !rotation ? "name a revolute, cylindrical or screw joint (rotation), or a prismatic one"
                                      : "name a prismatic, cylindrical or screw joint (translation)");
@@ -125,8 +122,8 @@ void Compiler::CompileCoupler(const CouplerSpec& c) {
 bool Compiler::GearMeshJoints(const std::string& ptr, const Joint& j1, const Joint& j2) {
   const std::string drop = "or drop pitch_radius (the gear then acts on the joints as torques only)";
   for (const Joint* j : {&j1, &j2})
-    if (j->type != JointType::Revolute) {
-      Error(ptr, "a tooth force needs revolute bearings, and joint '" + j->name + "' is " + JointTypeName(j->type),
+    if (j->type->coordinates != JointCoordinates::Angle) {  // a bearing: turning about h only
+      Error(ptr, "a tooth force needs revolute bearings, and joint '" + j->name + "' is " + j->type->name,
             "mount both gears on revolute joints, " + drop);
       return false;
     }

@@ -88,11 +88,10 @@ bool Compiler::DriverOnJoint(const DriverSpec& d, bool rot, Driver* drv) {
   const auto index = FindJoint(d.joint, d.pointer, true);
   if (!index || *index < 0) return false;  // unknown (reported), or that joint already has an error
   const Joint& j = model_.joints[*index];
-  const bool can = rot ? (j.type == JointType::Revolute || j.type == JointType::Cylindrical || j.type == JointType::Screw)
-                       : (j.type == JointType::Prismatic || j.type == JointType::Cylindrical || j.type == JointType::Screw);
+  const bool can = rot ? j.type->turns : j.type->slides;
   if (!can) {
     Error(d.pointer + "/joint",
-          std::string("a ") + (rot ? "rotation" : "translation") + " driver cannot drive " + JointTypeName(j.type) +
+          std::string("a ") + (rot ? "rotation" : "translation") + " driver cannot drive " + j.type->name +
               " joint '" + j.name + "'",
           rot ? "rotation drivers act on revolute, cylindrical or screw joints"
               : "translation drivers act on prismatic, cylindrical or screw joints");

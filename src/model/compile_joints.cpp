@@ -2,27 +2,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "joints/registry.hpp"
 #include "model/compiler.hpp"
 
 namespace mechkin {
-
-namespace {
-
-std::optional<JointType> JointTypeFromName(const std::string& name) {
-  for (JointType t : {JointType::Revolute, JointType::Prismatic, JointType::Screw, JointType::Cylindrical,
-                      JointType::Universal, JointType::Spherical, JointType::Planar, JointType::Distance})
-    if (name == JointTypeName(t)) return t;
-  return std::nullopt;
-}
-
-}  // namespace
 
 void Compiler::CompileJoint(const JointSpec& j) {
   const std::string& ptr = j.pointer;
   const auto& name = j.name;
   auto b1 = BodyRef(j.body1, "body1", ptr);
   auto b2 = BodyRef(j.body2, "body2", ptr);
-  const std::optional<JointType> type = j.type ? JointTypeFromName(*j.type) : std::nullopt;
+  const JointDescriptor* type = j.type ? FindJointType(*j.type) : nullptr;
   bool ok = name && b1 && b2 && type;
   if (name) {
     if (joint_index_.count(*name)) {
@@ -37,19 +27,18 @@ void Compiler::CompileJoint(const JointSpec& j) {
     ok = false;
   }
   if (!type) return;
-  const JointType known = type.value();
-  if (j.marker1 || j.marker2) return CompileMarkerJoint(j, known, ok ? &*name : nullptr, b1, b2);
-  CompileJointGeometry(j, known, ok ? &*name : nullptr, b1 ? *b1 : kGround, b2 ? *b2 : kGround);
+  if (j.marker1 || j.marker2) return CompileMarkerJoint(j, *type, ok ? &*name : nullptr, b1, b2);
+  CompileJointGeometry(j, *type, ok ? &*name : nullptr, b1 ? *b1 : kGround, b2 ? *b2 : kGround);
 }
 
 // The geometry of a joint of known type, validated; adds the joint when `name`
 // is given (the joint's name, bodies and type were valid).
-void Compiler::CompileJointGeometry(const JointSpec& j, JointType type, const std::string* name, BodyIndex body1,
-                                    BodyIndex body2) {
+void Compiler::CompileJointGeometry(const JointSpec& j, const JointDescriptor& type, const std::string* name,
+                                    BodyIndex body1, BodyIndex body2) {
   const std::string& ptr = j.pointer;
   bool ok = name != nullptr;
   Joint joint;
-  joint.type = type;
+  joint.type = &type;
   std::optional<Vec3> origin, axis, axis1, axis2, normal, p1, p2;
   auto read = [&](const std::optional<Vector3Spec>& spec, bool length, std::optional<Vec3>* out) {
     if (!spec) return;
@@ -64,7 +53,7 @@ void Compiler::CompileJointGeometry(const JointSpec& j, JointType type, const st
   read(j.point1, true, &p1);
   read(j.point2, true, &p2);
   if (!j.geometry_complete) ok = false;
-  if (type == JointType::Screw) ok = CompileScrewPitch(j, &joint) && ok;
+  if (type.scalar == JointScalar::Pitch) ok = CompileScrewPitch(j, &joint) && ok;
   if (axis1 && axis2) {
     const double c = axis1->normalized().dot(axis2->normalized());
     if (std::abs(c) > 1e-6) {
@@ -75,7 +64,7 @@ void Compiler::CompileJointGeometry(const JointSpec& j, JointType type, const st
       ok = false;
     }
   }
-  if (type == JointType::Distance && p1 && p2) ok = CompileDistanceLength(j, *p1, *p2, ok, "/point2", &joint);
+  if (type.scalar == JointScalar::Length && p1 && p2) ok = CompileDistanceLength(j, *p1, *p2, ok, "/point2", &joint);
   if (!ok) return;
   joint.body1 = body1;
   joint.body2 = body2;
@@ -126,42 +115,40 @@ bool Compiler::CompileDistanceLength(const JointSpec& j, const Vec3& p1, const V
   return ok;
 }
 
+void Compiler::SetBothFrames(const JointFrame& global, Joint* joint) {
+  joint->frame1 = LocalFrame(joint->body1, global);
+  joint->frame2 = LocalFrame(joint->body2, global);
+}
+
 void Compiler::AddJoint(const std::string& name, const std::optional<Vec3>& origin, const std::optional<Vec3>& axis,
                         const std::optional<Vec3>& axis1, const std::optional<Vec3>& axis2,
                         const std::optional<Vec3>& normal, const std::optional<Vec3>& p1,
                         const std::optional<Vec3>& p2, Joint* joint_ptr) {
   Joint& joint = *joint_ptr;
   joint.name = name;
-  JointFrame global;
-  switch (joint.type) {
-    case JointType::Revolute:
-    case JointType::Prismatic:
-    case JointType::Screw:
-    case JointType::Cylindrical:
-      global = MakeFrame(*origin, *axis);
+  // The frame the file's keys give (JointFrameRule), fixed in both bodies (§4).
+  switch (joint.type->frames) {
+    case JointFrameRule::Axis:
+      SetBothFrames(MakeFrame(*origin, *axis), &joint);
       break;
-    case JointType::Planar:
-      global = MakeFrame(*origin, *normal);
+    case JointFrameRule::Normal:
+      SetBothFrames(MakeFrame(*origin, *normal), &joint);
       break;
-    case JointType::Universal:
-      global = MakeFrame(*origin, *axis1, *axis2);
-      break;
-    case JointType::Spherical:
-      global.origin = *origin;
-      break;
-    case JointType::Distance:
-      break;
-  }
-  if (joint.type == JointType::Distance) {
-    joint.frame1.origin = LocalPoint(joint.body1, *p1);
-    joint.frame2.origin = LocalPoint(joint.body2, *p2);
-  } else {
-    joint.frame1 = LocalFrame(joint.body1, global);
-    joint.frame2 = LocalFrame(joint.body2, global);
-    if (joint.type == JointType::Universal) {
+    case JointFrameRule::CrossAxes:
+      SetBothFrames(MakeFrame(*origin, *axis1, *axis2), &joint);
       // body2 carries axis2 as its h (constraints.md §5, U row).
       joint.frame2 = LocalFrame(joint.body2, MakeFrame(*origin, *axis2, *axis1));
+      break;
+    case JointFrameRule::Point: {
+      JointFrame global;
+      global.origin = *origin;
+      SetBothFrames(global, &joint);
+      break;
     }
+    case JointFrameRule::TwoPoints:
+      joint.frame1.origin = LocalPoint(joint.body1, *p1);
+      joint.frame2.origin = LocalPoint(joint.body2, *p2);
+      break;
   }
   joint_index_[joint.name] = static_cast<int>(model_.joints.size());
   model_.joints.push_back(joint);
@@ -182,7 +169,7 @@ void Compiler::CompileJointLimits(const JointSpec& j) {
           "give the lower limit first; the design pose (or the markers' coincidence) is 0");
     return;
   }
-  const bool rotation = joint.type == JointType::Revolute || joint.type == JointType::Screw;
+  const bool rotation = joint.type->limit == JointLimit::Angle;
   const double unit = rotation ? angle_ : length_;
   joint.limits = std::make_pair(*lo * unit, *hi * unit);
 }

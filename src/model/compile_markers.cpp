@@ -49,21 +49,21 @@ std::optional<JointFrame> Compiler::Marker(BodyIndex body, const std::optional<s
 
 // A joint on two markers: its frames are the markers' (already in body coordinates),
 // so its coordinate is 0 where the markers coincide, not at the pose drawn.
-void Compiler::CompileMarkerJoint(const JointSpec& j, JointType type, const std::string* name,
+void Compiler::CompileMarkerJoint(const JointSpec& j, const JointDescriptor& type, const std::string* name,
                                   std::optional<BodyIndex> body1, std::optional<BodyIndex> body2) {
   const std::string& ptr = j.pointer;
   std::optional<JointFrame> m1, m2;
   if (body1) m1 = Marker(*body1, j.marker1, ptr + "/marker1");
   if (body2) m2 = Marker(*body2, j.marker2, ptr + "/marker2");
   Joint joint;
-  joint.type = type;
+  joint.type = &type;
   bool ok = name && m1 && m2;
-  if (type == JointType::Screw) ok = CompileScrewPitch(j, &joint) && ok;
+  if (type.scalar == JointScalar::Pitch) ok = CompileScrewPitch(j, &joint) && ok;
   if (!ok) return;
   const auto [r1, A1] = Pose(*body1);
   const auto [r2, A2] = Pose(*body2);
   const bool posed = HasFilePose(*body1) && HasFilePose(*body2);  // else the assembly places them
-  if (type == JointType::Universal && posed) {
+  if (type.frames == JointFrameRule::CrossAxes && posed) {
     const double c = (A1 * m1->h).dot(A2 * m2->h);
     if (std::abs(c) > 1e-6) {
       Error(ptr + "/marker2",
@@ -73,12 +73,12 @@ void Compiler::CompileMarkerJoint(const JointSpec& j, JointType type, const std:
       return;
     }
   }
-  if (type == JointType::Distance && !posed && !j.length) {
+  if (type.scalar == JointScalar::Length && !posed && !j.length) {
     Error(ptr, "distance link '" + *name + "' has no 'length' and a body without a position",
           "give the link's \"length\" (or positions of both bodies, whose distance is then the length)");
     return;
   }
-  if (type == JointType::Distance &&
+  if (type.scalar == JointScalar::Length &&
       !CompileDistanceLength(j, r1 + A1 * m1->origin, r2 + A2 * m2->origin, true, "/marker2", &joint))
     return;
   joint.name = *name;

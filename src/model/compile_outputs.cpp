@@ -122,13 +122,13 @@ bool Compiler::CompileJointOutput(const OutputSpec& o, Output* out) {
   const auto index = FindJoint(o.joint, ptr, false);
   if (!index || *index < 0) return false;
   const Joint& j = model_.joints[*index];
-  if (j.type == JointType::Distance) {
+  if (j.type->coordinates == JointCoordinates::None) {
     Error(ptr + "/joint", "'" + j.name + "' is a distance link: its length does not change",
           "use a distance output between its two points, or an angle output");
     return false;
   }
-  if (o.sequence && j.type != JointType::Spherical) {
-    Error(ptr + "/sequence", "'sequence' applies to spherical joints; '" + j.name + "' is " + JointTypeName(j.type),
+  if (o.sequence && j.type->coordinates != JointCoordinates::Orientation) {
+    Error(ptr + "/sequence", "'sequence' applies to spherical joints; '" + j.name + "' is " + j.type->name,
           "remove it");
     return false;
   }
@@ -172,8 +172,8 @@ bool Compiler::CompileVelocityRatio(const OutputSpec& o, Output* out) {
 bool Compiler::IsScalarOutput(const Output& o) const {
   if (o.kind == OutputKind::Distance || o.kind == OutputKind::Angle) return true;
   if (o.kind != OutputKind::JointCoordinate) return false;
-  const JointType t = model_.joints[o.joint].type;
-  return t == JointType::Revolute || t == JointType::Prismatic;
+  const JointCoordinates c = model_.joints[o.joint].type->coordinates;
+  return c == JointCoordinates::Angle || c == JointCoordinates::Slide;
 }
 
 // {"type": "orientation", "body", "relative_to"?, "sequence"}.

@@ -17,11 +17,11 @@ namespace {
 // link's length along its f axis.
 JointFrame ChildTarget(const Joint& j, const JointFrame& parent) {
   JointFrame t = parent;
-  if (j.type == JointType::Universal) {
+  if (j.type->frames == JointFrameRule::CrossAxes) {
     t.f = parent.h;
     t.g = -parent.g;
     t.h = parent.f;
-  } else if (j.type == JointType::Distance) {
+  } else if (j.type->frames == JointFrameRule::TwoPoints) {
     t.origin = parent.origin + j.length * parent.f;
   }
   return t;
@@ -50,7 +50,7 @@ void Compiler::PlaceChild(int joint, BodyIndex parent) {
   global.origin = rp + Ap * pf.origin;
   global.f = Ap * pf.f, global.g = Ap * pf.g, global.h = Ap * pf.h;
   const JointFrame target = ChildTarget(j, global);
-  const Mat3 A = j.type == JointType::Distance ? Ap : Mat3(Columns(target) * Columns(own).transpose());
+  const Mat3 A = j.type->frames == JointFrameRule::TwoPoints ? Ap : Mat3(Columns(target) * Columns(own).transpose());
   Body& b = model_.bodies[child];
   b.euler = QuatFromMatrix(A);
   b.position = target.origin - CalcA(b.euler) * own.origin;
@@ -79,7 +79,7 @@ void Compiler::PlaceByMarkers() {
       q.pop_front();
       for (int k : adjacent[u]) {
         const Joint& j = model_.joints[k];
-        if (!distance_links && j.type == JointType::Distance) continue;
+        if (!distance_links && j.type->frames == JointFrameRule::TwoPoints) continue;
         const int v = node(j.body1) == u ? node(j.body2) : node(j.body1);
         if (reached[v]) continue;
         reached[v] = true;

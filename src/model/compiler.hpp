@@ -80,7 +80,7 @@ class Compiler {
   // Markers (compile_markers.cpp).
   void CompileMarkers(BodyIndex body, const std::vector<MarkerSpec>& markers);
   std::optional<JointFrame> Marker(BodyIndex body, const std::optional<std::string>& name, const std::string& ptr);
-  void CompileMarkerJoint(const JointSpec& j, JointType type, const std::string* name, std::optional<BodyIndex> body1,
+  void CompileMarkerJoint(const JointSpec& j, const JointDescriptor& type, const std::string* name, std::optional<BodyIndex> body1,
                           std::optional<BodyIndex> body2);
   /// Ground, or a body whose position the file gives.
   bool HasFilePose(BodyIndex b) const { return b == kGround || sketched_[b]; }
@@ -91,7 +91,7 @@ class Compiler {
 
   // Joints and drivers (compile_joints.cpp).
   void CompileJoint(const JointSpec& j);
-  void CompileJointGeometry(const JointSpec& j, JointType type, const std::string* name, BodyIndex body1,
+  void CompileJointGeometry(const JointSpec& j, const JointDescriptor& type, const std::string* name, BodyIndex body1,
                             BodyIndex body2);
   bool CompileScrewPitch(const JointSpec& j, Joint* joint);
   bool CompileDistanceLength(const JointSpec& j, const Vec3& p1, const Vec3& p2, bool ok, const char* point2_key,
@@ -101,6 +101,7 @@ class Compiler {
                 const std::optional<Vec3>& normal, const std::optional<Vec3>& p1, const std::optional<Vec3>& p2,
                 Joint* joint);
   void CompileJointLimits(const JointSpec& j);
+  void SetBothFrames(const JointFrame& global, Joint* joint);
   void CompileDriver(const DriverSpec& d);
   bool DriverOnBody(const DriverSpec& d, Driver* drv);
   bool DriverOnJoint(const DriverSpec& d, bool rotation, Driver* drv);

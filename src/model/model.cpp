@@ -4,30 +4,6 @@
 
 namespace mechkin {
 
-int EquationsRemoved(JointType type) {
-  switch (type) {
-    case JointType::Revolute: case JointType::Prismatic: case JointType::Screw: return 5;
-    case JointType::Cylindrical: case JointType::Universal: return 4;
-    case JointType::Spherical: case JointType::Planar: return 3;
-    case JointType::Distance: return 1;
-  }
-  return 0;
-}
-
-const char* JointTypeName(JointType type) {
-  switch (type) {
-    case JointType::Revolute: return "revolute";
-    case JointType::Prismatic: return "prismatic";
-    case JointType::Screw: return "screw";
-    case JointType::Cylindrical: return "cylindrical";
-    case JointType::Universal: return "universal";
-    case JointType::Spherical: return "spherical";
-    case JointType::Planar: return "planar";
-    case JointType::Distance: return "distance";
-  }
-  return "?";
-}
-
 const char* CouplerKindName(CouplerKind kind) {
   switch (kind) {
     case CouplerKind::Gear: return "gear";

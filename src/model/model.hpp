@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "joints/descriptor.hpp"
 #include "math/rotation.hpp"
 #include "model/time_function.hpp"
 #include "model/units.hpp"
@@ -63,8 +64,6 @@ struct Load {
   double stiffness = 0, free_length = 0, damping = 0, preload = 0;
 };
 
-enum class JointType { Revolute, Prismatic, Screw, Cylindrical, Universal, Spherical, Planar, Distance };
-
 /// Joint definition frame fixed in one body (constraints.md §4): origin s' and
 /// orthonormal axes f', g', h' in that body's frame.
 struct JointFrame {
@@ -74,7 +73,8 @@ struct JointFrame {
 
 struct Joint {
   std::string name;
-  JointType type;
+  // The joint's type (joints/registry.hpp): every layer reads what it needs from it.
+  const JointDescriptor* type = nullptr;
   BodyIndex body1 = kGround, body2 = kGround;
   JointFrame frame1, frame2;  // local frames on body1 and body2 (coincide globally at design)
   double pitch = 0;           // screw: metres per revolution (right-handed positive)
@@ -262,9 +262,5 @@ inline bool IsAngleDriver(const Driver& d) {
 
 /// "gear", "belt", "rack_pinion", "screw_coupling", "coupling" (the file's words).
 const char* CouplerKindName(CouplerKind kind);
-/// Number of equations a joint removes (format-v1 joint table).
-int EquationsRemoved(JointType type);
-/// Lower-case name as in the file ("revolute", ...).
-const char* JointTypeName(JointType type);
 
 }  // namespace mechkin

@@ -1,6 +1,7 @@
 // "joints" and "drivers".
 #include <algorithm>
 
+#include "joints/registry.hpp"
 #include "spec/json_reader.hpp"
 
 namespace mechkin::spec_reader {
@@ -10,50 +11,31 @@ namespace {
 using StringField = std::pair<const char*, std::optional<std::string>*>;
 using VectorField = std::pair<const char*, std::optional<Vector3Spec>*>;
 
-struct JointKeys {
-  const char* name;
-  std::vector<std::string> geometry;  // required geometry keys
-  std::vector<std::string> optional;
-};
-
-const std::vector<JointKeys>& JointTypes() {
-  static const std::vector<JointKeys> kTypes = {
-      {"revolute", {"origin", "axis"}, {"limits"}},
-      {"prismatic", {"origin", "axis"}, {"limits"}},
-      {"screw", {"origin", "axis", "pitch"}, {"limits"}},
-      {"cylindrical", {"origin", "axis"}, {"limits"}},
-      {"universal", {"origin", "axis1", "axis2"}, {}},
-      {"spherical", {"origin"}, {}},
-      {"planar", {"origin", "normal"}, {}},
-      {"distance", {"point1", "point2"}, {"length"}},
-  };
-  return kTypes;
-}
-
-std::vector<std::string> JointTypeNames() {
-  std::vector<std::string> names;
-  for (const auto& t : JointTypes()) names.push_back(t.name);
-  return names;
-}
-
-const JointKeys* FindJointType(JsonReader& rd, const std::optional<std::string>& type, const std::string& ptr) {
+// The joint types are the registry's (src/joints): a type registered by the program
+// is read like a built-in one.
+const JointDescriptor* FindJointType(JsonReader& rd, const std::optional<std::string>& type, const std::string& ptr) {
   if (!type) return nullptr;
-  for (const auto& t : JointTypes())
-    if (*type == t.name) return &t;
-  const std::string g = DidYouMean(*type, JointTypeNames());
+  if (const JointDescriptor* d = mechkin::FindJointType(*type)) return d;
+  const std::vector<std::string> names = JointTypeNames();
+  const std::string g = DidYouMean(*type, names);
   rd.Error(ptr + "/type", "unknown joint type '" + Shorten(*type) + "'",
-           (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(JointTypeNames()));
+           (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(names));
   return nullptr;
+}
+
+void Append(std::vector<std::string>* to, const std::vector<std::string>& keys) {
+  to->insert(to->end(), keys.begin(), keys.end());
 }
 
 // A joint on two markers ("marker1" of body1, "marker2" of body2): the markers give
 // the origin and axes; a screw keeps its pitch, a distance link its optional length.
-void MarkerJointKeys(const JointKeys& info, std::vector<std::string>* allowed, std::vector<std::string>* required) {
+void MarkerJointKeys(const JointDescriptor& info, std::vector<std::string>* allowed,
+                     std::vector<std::string>* required) {
   allowed->insert(allowed->end(), {"marker1", "marker2"});
   required->insert(required->end(), {"marker1", "marker2"});
-  if (std::string(info.name) == "screw") allowed->push_back("pitch"), required->push_back("pitch");
-  if (std::string(info.name) == "distance") allowed->push_back("length");
-  if (std::find(info.optional.begin(), info.optional.end(), "limits") != info.optional.end()) allowed->push_back("limits");
+  Append(allowed, info.MarkerRequiredKeys());
+  Append(required, info.MarkerRequiredKeys());
+  Append(allowed, info.MarkerOptionalKeys());
 }
 
 // "limits": [lo, hi], two numbers or expressions.
@@ -117,22 +99,22 @@ void ReadJoint(JsonReader& rd, const json& jj, const std::string& ptr, Mechanism
   JointSpec joint;
   joint.pointer = ptr;
   const auto type = rd.String(jj, "type", ptr);
-  const JointKeys* info = FindJointType(rd, type, ptr);
+  const JointDescriptor* info = FindJointType(rd, type, ptr);
   std::vector<std::string> allowed = {"name", "description", "type", "body1", "body2"};
   std::vector<std::string> required = {"name", "type", "body1", "body2"};
   const bool by_markers = jj.contains("marker1") || jj.contains("marker2");
   if (info && by_markers) {
     MarkerJointKeys(*info, &allowed, &required);
   } else {
-    for (const auto& t : JointTypes()) {
-      if (info && info != &t) continue;
-      allowed.insert(allowed.end(), t.geometry.begin(), t.geometry.end());
-      allowed.insert(allowed.end(), t.optional.begin(), t.optional.end());
-      if (info) required.insert(required.end(), t.geometry.begin(), t.geometry.end());
+    for (const JointDescriptor* t : JointTypes()) {
+      if (info && info != t) continue;
+      Append(&allowed, t->RequiredKeys());
+      Append(&allowed, t->OptionalKeys());
+      if (info) Append(&required, t->RequiredKeys());
     }
     if (!info) allowed.insert(allowed.end(), {"marker1", "marker2"});
   }
-  rd.CheckObject(jj, ptr, allowed, required, info ? std::string("a ") + info->name + " joint" : "a joint");
+  rd.CheckObject(jj, ptr, allowed, required, info ? "a " + info->name + " joint" : "a joint");
   joint.name = rd.Name(jj, ptr, "joint");
   joint.body1 = rd.String(jj, "body1", ptr);
   joint.body2 = rd.String(jj, "body2", ptr);
@@ -149,9 +131,11 @@ void ReadJoint(JsonReader& rd, const json& jj, const std::string& ptr, Mechanism
   joint.marker1 = rd.String(jj, "marker1", ptr);
   joint.marker2 = rd.String(jj, "marker2", ptr);
   joint.limits = ReadLimits(rd, jj, ptr);
-  if (info && !by_markers)
-    joint.geometry_complete = std::all_of(info->geometry.begin(), info->geometry.end(),
-                                          [&](const std::string& key) { return jj.contains(key); });
+  if (info && !by_markers) {
+    const std::vector<std::string> geometry = info->RequiredKeys();
+    joint.geometry_complete =
+        std::all_of(geometry.begin(), geometry.end(), [&](const std::string& key) { return jj.contains(key); });
+  }
   spec->joints.push_back(std::move(joint));
 }
 

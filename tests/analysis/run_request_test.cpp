@@ -132,13 +132,7 @@ TEST(RunRequest, InvalidRequestOrSelectionThrowsWithTheMessage) {
   }
 }
 
-TEST(EnumNames, JointAndDrivingNamesAgreeWithTheModelAndMobilityLayers) {
-  for (const auto& e : EnumNames<JointType>::kAll) {
-    EXPECT_STREQ(ToString(e.value), JointTypeName(e.value));
-    JointType back = JointType::Distance;
-    ASSERT_TRUE(Parse(e.name, &back));
-    EXPECT_EQ(back, e.value);
-  }
+TEST(EnumNames, DrivingNamesAgreeWithTheMobilityLayer) {
   for (const auto& e : EnumNames<DrivingStatus>::kAll) EXPECT_STREQ(ToString(e.value), DrivingStatusName(e.value));
   PositionSolver s = PositionSolver::Newton;
   EXPECT_TRUE(Parse("ceres", &s));

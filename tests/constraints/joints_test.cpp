@@ -2,10 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <filesystem>
 #include <random>
 
 #include "constraints/system.hpp"
+#include "joints/registry.hpp"
 #include "model/frames.hpp"
 #include "model/loader.hpp"
 #include "kinematics/position.hpp"
@@ -13,10 +15,11 @@
 namespace mechkin {
 namespace {
 
-// Two free bodies at random poses joined by one joint assembled at a random
-// origin/axis: the kernel of the joint's Jacobian (12 columns) has dimension
-// 6 (rigid motions of the pair) + the freedoms the joint allows.
-int KernelDimension(JointType type, std::mt19937& g) {
+// The conformance harness of the joint types (docs/joints.md): two free bodies at
+// random poses joined by one joint assembled at a random origin/axis: the kernel of
+// the joint's Jacobian (12 columns) has dimension 6 (rigid motions of the pair) +
+// the freedoms the joint allows, and its rows are 6 − freedoms.
+int KernelDimension(const JointDescriptor& type, int freedoms, std::mt19937& g) {
   std::uniform_real_distribution<double> u(-1, 1);
   Model m;
   for (int b = 0; b < 2; ++b) {
@@ -28,7 +31,7 @@ int KernelDimension(JointType type, std::mt19937& g) {
   }
   Joint j;
   j.name = "j";
-  j.type = type;
+  j.type = &type;
   j.body1 = 0;
   j.body2 = 1;
   j.pitch = 0.05;
@@ -39,8 +42,8 @@ int KernelDimension(JointType type, std::mt19937& g) {
   };
   j.frame1 = local(0, global);
   j.frame2 = local(1, global);
-  if (type == JointType::Universal) j.frame2 = local(1, MakeFrame(origin, global.f, axis));
-  if (type == JointType::Distance) {
+  if (type.frames == JointFrameRule::CrossAxes) j.frame2 = local(1, MakeFrame(origin, global.f, axis));
+  if (type.frames == JointFrameRule::TwoPoints) {
     j.frame2.origin = local(1, MakeFrame(origin + 0.3 * axis, axis)).origin;
     j.length = 0.3;
   }
@@ -50,8 +53,9 @@ int KernelDimension(JointType type, std::mt19937& g) {
   const SystemState s(sys);
   Eigen::VectorXd phi;
   CalcPhi(sys, s, &phi);
-  EXPECT_LT(phi.cwiseAbs().maxCoeff(), 1e-13) << JointTypeName(type);  // assembled as built
-  EXPECT_EQ(sys.num_rows(), EquationsRemoved(type));
+  EXPECT_LT(phi.cwiseAbs().maxCoeff(), 1e-13) << type.name;  // assembled as built
+  EXPECT_EQ(sys.num_rows(), 6 - freedoms) << type.name;
+  EXPECT_EQ(sys.num_rows(), type.Rows()) << type.name;
   Eigen::MatrixXd J;
   CalcJacobianDense(sys, s, Formulation::Omega, &J);
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(J);
@@ -60,13 +64,26 @@ int KernelDimension(JointType type, std::mt19937& g) {
   return 12 - rank;
 }
 
+// One line a joint type: its name and the freedoms it allows. Every registered type
+// must have its line.
+const std::pair<const char*, int> kConformance[] = {
+    {"revolute", 1},  {"prismatic", 1}, {"screw", 1},  {"cylindrical", 2},
+    {"universal", 2}, {"spherical", 3}, {"planar", 3}, {"distance", 5},
+};
+
 TEST(Joints, KernelDimensionIsTheFreedomsAllowed) {
   std::mt19937 g(42);
-  const std::pair<JointType, int> cases[] = {
-      {JointType::Revolute, 1}, {JointType::Prismatic, 1}, {JointType::Screw, 1}, {JointType::Cylindrical, 2},
-      {JointType::Universal, 2}, {JointType::Spherical, 3}, {JointType::Planar, 3}, {JointType::Distance, 5}};
   for (int trial = 0; trial < 50; ++trial)
-    for (const auto& [type, freedoms] : cases) EXPECT_EQ(KernelDimension(type, g), 6 + freedoms) << JointTypeName(type);
+    for (const auto& [name, freedoms] : kConformance)
+      EXPECT_EQ(KernelDimension(JointTypeNamed(name), freedoms, g), 6 + freedoms) << name;
+}
+
+TEST(Joints, EveryRegisteredTypeHasAConformanceLine) {
+  std::vector<std::string> listed;
+  for (const auto& [name, freedoms] : kConformance) listed.push_back(name);
+  for (const JointDescriptor* d : JointTypes())
+    EXPECT_NE(std::find(listed.begin(), listed.end(), d->name), listed.end()) << d->name << " has no line";
+  EXPECT_EQ(JointTypes().size(), listed.size());
 }
 
 // Φ = 0 to 1e-12 (relative to the mechanism size) at the design pose of every

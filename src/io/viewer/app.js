@@ -94,25 +94,25 @@
   scene.add(ground);
   function parent(body) { return body < 0 ? ground : groups[body]; }
 
-  // Joint glyphs by type, fixed in body1 (ground parts grey).
+  // Joint glyphs by the joint type's glyph name (src/joints), fixed in body1 (ground parts grey).
   const jointMat = material(0x444444), groundMat = material(0x999999);
   D.joints.forEach(function (j) {
     const o = v3(j.origin), h = v3(j.axis).normalize(), s = thick;
     const mat = j.body1 < 0 ? groundMat : jointMat;
     let glyph;
-    if (j.type === "revolute" || j.type === "screw") glyph = stick(o.clone().addScaledVector(h, -3 * s), o.clone().addScaledVector(h, 3 * s), 1.8 * s, mat);
-    else if (j.type === "cylindrical") glyph = stick(o.clone().addScaledVector(h, -5 * s), o.clone().addScaledVector(h, 5 * s), 1.4 * s, mat);
-    else if (j.type === "prismatic") {
+    if (j.glyph === "pin") glyph = stick(o.clone().addScaledVector(h, -3 * s), o.clone().addScaledVector(h, 3 * s), 1.8 * s, mat);
+    else if (j.glyph === "sleeve") glyph = stick(o.clone().addScaledVector(h, -5 * s), o.clone().addScaledVector(h, 5 * s), 1.4 * s, mat);
+    else if (j.glyph === "slider") {
       glyph = new THREE.Mesh(new THREE.BoxBufferGeometry(3 * s, 8 * s, 3 * s), mat);
       glyph.position.copy(o);
       glyph.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), h);
-    } else if (j.type === "spherical") glyph = ball(o, 2.2 * s, mat);
-    else if (j.type === "universal") {
+    } else if (j.glyph === "ball") glyph = ball(o, 2.2 * s, mat);
+    else if (j.glyph === "cross") {
       glyph = new THREE.Group();
       const h2 = v3(j.axis2).normalize();
       glyph.add(stick(o.clone().addScaledVector(h, -3 * s), o.clone().addScaledVector(h, 3 * s), s, mat));
       glyph.add(stick(o.clone().addScaledVector(h2, -3 * s), o.clone().addScaledVector(h2, 3 * s), s, mat));
-    } else if (j.type === "planar") {
+    } else if (j.glyph === "plate") {
       glyph = new THREE.Mesh(new THREE.BoxBufferGeometry(8 * s, 0.6 * s, 8 * s), mat);
       glyph.position.copy(o);
       glyph.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), h);
@@ -123,7 +123,7 @@
   D.ground.forEach(function (p) { ground.add(ball(v3(p), thick * 1.4, groundMat)); });
   // Distance links and drivers: a thin rod between their two body points, set each frame.
   const linkMat = material(0x555555), yAxis = new THREE.Vector3(0, 1, 0);
-  const links = D.joints.filter(function (j) { return j.type === "distance"; }).concat(D.links).map(function (j) {
+  const links = D.joints.filter(function (j) { return j.glyph === "link"; }).concat(D.links).map(function (j) {
     const rod = new THREE.Mesh(new THREE.CylinderBufferGeometry(thick * 0.5, thick * 0.5, 1, 8), linkMat);
     rod.userData.label = j.name;
     pickable.push(rod);
