@@ -55,13 +55,18 @@ struct SimbodySliderCrank {
   int accepted = 0;
 
   // The cubic through the last four equally spaced values, one step ahead:
-  // x(t+h) ≈ 4x₀ − 6x₁ + 4x₂ − x₃ (fewer values: lower orders).
-  static SimTK::Vector Extrapolate(const SimTK::Vector* h, int n) {
-    if (n >= 4) return 4 * h[0] - 6 * h[1] + 4 * h[2] - h[3];
-    if (n == 3) return 3 * h[0] - 3 * h[1] + h[2];
-    if (n == 2) return 2 * h[0] - h[1];
-    return h[0];
+  // x(t+h) ≈ 4x₀ − 6x₁ + 4x₂ − x₃ (fewer values: lower orders). Written into `out`
+  // element by element: SimTK::Vector expressions allocate their temporaries, which
+  // would charge Simbody's step for heap traffic mechkin's predictor does not have.
+  static void Extrapolate(const SimTK::Vector* h, int n, SimTK::Vector& out) {
+    for (int i = 0; i < out.size(); ++i) {
+      if (n >= 4) out[i] = 4 * h[0][i] - 6 * h[1][i] + 4 * h[2][i] - h[3][i];
+      else if (n == 3) out[i] = 3 * h[0][i] - 3 * h[1][i] + h[2][i];
+      else if (n == 2) out[i] = 2 * h[0][i] - h[1][i];
+      else out[i] = h[0][i];
+    }
   }
+  // Shifts the history by one (same-size assignments: no allocation) and stores the accepted state.
   void Remember() {
     for (int k = 3; k > 0; --k) { q_hist[k] = q_hist[k - 1]; u_hist[k] = u_hist[k - 1]; }
     q_hist[0] = state.getQ();
@@ -71,8 +76,8 @@ struct SimbodySliderCrank {
   void Step(double t, bool extrapolate = false) {
     using namespace SimTK;
     if (extrapolate && accepted > 0) {
-      state.updQ() = Extrapolate(q_hist, accepted);
-      state.updU() = Extrapolate(u_hist, accepted);
+      Extrapolate(q_hist, accepted, state.updQ());
+      Extrapolate(u_hist, accepted, state.updU());
     }
     state.setTime(t);
     system.realize(state, Stage::Time);

@@ -201,7 +201,11 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
   EvalDriverFunctions(model_, t, &s_);
   AimRotationDrivers(ws_->system(), &s_);
   if (dt > 0 && predictor_ > 0) PredictPose(dt, predictor_, &s_);
-  predicted_.bodies = s_.bodies;
+  // Only the poses (all PoseDistance reads): the whole bodies are 1.8 kB each.
+  for (size_t b = 0; b < s_.bodies.size(); ++b) {
+    predicted_.bodies[b].r[0] = s_.bodies[b].r[0];
+    predicted_.bodies[b].p = s_.bodies[b].p;
+  }
   // The tolerance is on the answer too: the derivatives need κ² times less residual
   // (error_bounds.hpp). Not in the sub-steps that bracket a singular position
   // (Refine), where the pose must follow the plain continuation the bisection expects,

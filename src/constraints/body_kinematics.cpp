@@ -82,9 +82,4 @@ void BodyKinematics::CalcEulerDerivatives(int order, Vec4* out) const {
   }
 }
 
-const BodyKinematics& GroundKinematics() {
-  static const BodyKinematics ground;
-  return ground;
-}
-
 }  // namespace mechkin

@@ -55,7 +55,11 @@ struct BodyKinematics {
   void CalcEulerDerivatives(int order, Vec4* out) const;
 };
 
-/// The fixed frame: r = 0, A = I, all rates zero.
-const BodyKinematics& GroundKinematics();
+/// The fixed frame: r = 0, A = I, all rates zero. Inline: every family's input asks
+/// for it (SystemState::Kin), some fifty times a step.
+inline const BodyKinematics& GroundKinematics() {
+  static const BodyKinematics ground;
+  return ground;
+}
 
 }  // namespace mechkin

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace mechkin {
 
@@ -55,26 +56,40 @@ TableWriter::TableWriter(const MotionLayout& layout, TableFormat format, OutputF
     head += "],\"rows\":[";
   }
   file_->Write(head);
-  line_.reserve(4096);
 }
 
-void TableWriter::AppendNumber(double v) {
-  char buf[32];
-  if (format_ == TableFormat::Json && !std::isfinite(v)) { line_ += "null"; return; }
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  line_.append(buf, res.ptr);
-}
-
-bool TableWriter::Append(const double* row, int size) {
-  line_.clear();
-  if (format_ == TableFormat::Json) line_ += first_row_ ? "[" : ",[";
-  for (int c = 0; c < size; ++c) {
-    if (c) line_ += ',';
-    AppendNumber(row[c]);
+// One number at `out` (room for kMaxNumberChars), returning its end. Exact zeros,
+// nearly half of a typical table (planar and axis-aligned columns), skip to_chars:
+// its shortest form of ±0 is "0" and "-0".
+char* TableWriter::AppendNumber(double v, char* out) const {
+  if (v == 0) {
+    if (std::signbit(v)) *out++ = '-';
+    *out++ = '0';
+    return out;
   }
-  line_ += format_ == TableFormat::Json ? "]" : "\n";
+  if (format_ == TableFormat::Json && !std::isfinite(v)) {
+    std::memcpy(out, "null", 4);
+    return out + 4;
+  }
+  return std::to_chars(out, out + kMaxNumberChars, v).ptr;
+}
+
+// The row straight into one buffer sized once (no string appends per number).
+bool TableWriter::Append(const double* row, int size) {
+  const size_t room = static_cast<size_t>(size) * (kMaxNumberChars + 1) + 4;
+  if (buffer_.size() < room) buffer_.resize(room);
+  char* out = buffer_.data();
+  if (format_ == TableFormat::Json) {
+    if (!first_row_) *out++ = ',';
+    *out++ = '[';
+  }
+  for (int c = 0; c < size; ++c) {
+    if (c) *out++ = ',';
+    out = AppendNumber(row[c], out);
+  }
+  *out++ = format_ == TableFormat::Json ? ']' : '\n';
   first_row_ = false;
-  return file_->Write(line_);
+  return file_->Write(buffer_.data(), static_cast<size_t>(out - buffer_.data()));
 }
 
 bool TableWriter::Finish(const std::string& partial_note, std::string* error) {

@@ -26,10 +26,12 @@ class TableWriter : public RowSink {
   bool Finish(const std::string& partial_note, std::string* error);
 
  private:
-  void AppendNumber(double v);
+  // to_chars' shortest round-trip form of a double is at most 24 characters.
+  static constexpr int kMaxNumberChars = 32;
+  char* AppendNumber(double v, char* out) const;
   TableFormat format_;
   OutputFile* file_;
-  std::string line_;
+  std::vector<char> buffer_;  // one row's text
   bool first_row_ = true;
 };
 

@@ -11,6 +11,9 @@ NewtonSolver::NewtonSolver(const ConstraintSystem& sys, std::vector<int> rows)
   dense_ = n <= 120 && static_cast<int>(rows_.size()) == n;
   if (dense_) {
     dense_J_.setZero(n, n);
+    const Eigen::SparseMatrix<double>& J = jac_.matrix();
+    for (int c = 0; c < J.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(J, c); it; ++it) dense_offset_.push_back(it.row() + c * n);
   } else {
     lu_.analyzePattern(jac_.matrix());
   }
@@ -28,7 +31,12 @@ NewtonSolver::NewtonSolver(const ConstraintSystem& sys, std::vector<int> rows)
 bool NewtonSolver::Factorize(const SystemState& s) {
   jac_.Fill(sys_, s);
   if (dense_) {
-    dense_J_ = jac_.matrix();
+    // The pattern's values into the zeroed matrix (what dense_J_ = J does, without
+    // walking the sparse structure): the LU overwrites it in place every time.
+    dense_J_.setZero();
+    const double* values = jac_.matrix().valuePtr();
+    double* dense = dense_J_.data();
+    for (size_t k = 0; k < dense_offset_.size(); ++k) dense[dense_offset_[k]] = values[k];
     factorized_ = dense_lu_.Compute(&dense_J_);
   } else {
     lu_.factorize(jac_.matrix());

@@ -62,6 +62,7 @@ class NewtonSolver : public Factorization {
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
   bool dense_ = false;
   Eigen::MatrixXd dense_J_;
+  std::vector<int> dense_offset_;  // per nonzero of jac_ (storage order): its place in dense_J_
   SmallLU dense_lu_;
   bool factorized_ = false;
   Eigen::VectorXd phi_, rhs_, dq_, cond_x_, cond_y_, cond_b_;

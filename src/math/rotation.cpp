@@ -4,22 +4,6 @@
 
 namespace mechkin {
 
-Mat34 CalcG(const Vec4& p) {
-  Mat34 G;
-  G << -p[1], p[0], p[3], -p[2],
-       -p[2], -p[3], p[0], p[1],
-       -p[3], p[2], -p[1], p[0];
-  return G;
-}
-
-Mat34 CalcE(const Vec4& p) {
-  Mat34 E;
-  E << -p[1], p[0], -p[3], p[2],
-       -p[2], p[3], p[0], -p[1],
-       -p[3], -p[2], p[1], p[0];
-  return E;
-}
-
 Vec4 QuatMultiply(const Vec4& a, const Vec4& b) {
   Vec4 c;
   c[0] = a[0] * b[0] - a.tail<3>().dot(b.tail<3>());

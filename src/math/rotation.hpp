@@ -21,10 +21,23 @@ inline Mat3 Tilde(const Vec3& a) {
   return t;
 }
 
-/// G(p) = [-e, -ẽ + e0 I]  (§1.2); ω' = 2 G ṗ.
-Mat34 CalcG(const Vec4& p);
+/// G(p) = [-e, -ẽ + e0 I]  (§1.2); ω' = 2 G ṗ. Inline: the predictor's Euler-parameter
+/// series builds six of them per body and step.
+inline Mat34 CalcG(const Vec4& p) {
+  Mat34 G;
+  G << -p[1], p[0], p[3], -p[2],
+       -p[2], -p[3], p[0], p[1],
+       -p[3], p[2], -p[1], p[0];
+  return G;
+}
 /// E(p) = [-e, ẽ + e0 I]  (§1.2); ω = 2 E ṗ.
-Mat34 CalcE(const Vec4& p);
+inline Mat34 CalcE(const Vec4& p) {
+  Mat34 E;
+  E << -p[1], p[0], -p[3], p[2],
+       -p[2], p[3], p[0], -p[1],
+       -p[3], -p[2], p[1], p[0];
+  return E;
+}
 /// A(p) = E Gᵀ = (2e0² − 1) I + 2 (e eᵀ + e0 ẽ)  (§1.2), in any scalar type (double,
 /// or long double for the extended-precision accuracy phase of the position solve).
 template <typename S>
