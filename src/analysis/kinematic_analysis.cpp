@@ -136,6 +136,8 @@ class Stepper {
     solve_.max_iterations = options.max_iterations;
     predictor_ = std::min(options.predictor_order, options.order);
     CheckSetAsideOnSolvedBodies();
+    if (!ClearanceOutputPairs(model_).empty())
+      contacts_ = std::make_unique<ContactWatch>(model_, ws_->options().needed_bodies);
   }
   /// Runs every row; fills the report's stop reason when it ends early.
   void Run(const StepCallback& on_step, AnalysisReport* rep);
@@ -189,6 +191,7 @@ class Stepper {
   std::unique_ptr<ForceSolver> forces_;
   ForceResults force_results_;
   JointLimitWatch limits_{model_};
+  std::unique_ptr<ContactWatch> contacts_;
   std::unique_ptr<SensitivitySolver> sensitivity_;
 };
 
@@ -513,6 +516,8 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       diag.sensitivity = sensitivity_.get();
     }
     if (StopAtJointLimit(step, rep)) return;
+    if (WatchContacts(contacts_.get(), *ws_, prev_, s_, step, std::max(predictor_, 1), options_.on_contact_stop, rep))
+      return;
     diag.solve_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     UpdateAngleReferences(ws_->system(), &s_);
     if (options_.keep_step_diagnostics) rep->steps.push_back(diag);
