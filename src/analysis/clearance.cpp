@@ -5,6 +5,7 @@
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
 #include <Eigen/Geometry>
@@ -132,27 +133,52 @@ const ClearanceEvaluator::Geometry& ClearanceEvaluator::Of(BodyIndex body) const
 
 double ClearanceEvaluator::Reach(BodyIndex body) const { return Of(body).reach; }
 
-// The smallest signed distance over the shape pairs (FCL's GJK/EPA, nearest points
-// in global coordinates), then d' = n·(v₂ − v₁) with n the unit vector from the
-// closest point on body1 to the one on body2, reversed in penetration (§13).
+namespace {
+
+// One shape pair: GJK's distance and closest points (global) while apart; in
+// contact, minus the penetration depth from FCL's contact (analytic for spheres
+// and boxes, MPR otherwise), its witness points ∓ half the depth along the normal
+// (from shape 1 to shape 2). FCL's signed distance (EPA) is not used: it trips an
+// assertion of Debian's build on penetrating spheres.
+double ShapePairDistance(const fcl::CollisionGeometryd* a, const fcl::Transform3d& Ta,
+                         const fcl::CollisionGeometryd* b, const fcl::Transform3d& Tb, double tolerance, Vec3* pa,
+                         Vec3* pb) {
+  fcl::DistanceRequestd request(true, false, 0.0, 0.0, tolerance);
+  fcl::DistanceResultd result;
+  const double d = fcl::distance(a, Ta, b, Tb, request, result);
+  *pa = result.nearest_points[0];
+  *pb = result.nearest_points[1];
+  if (d > 0) return d;
+  fcl::CollisionRequestd touching(1, true);
+  fcl::CollisionResultd contact;
+  if (fcl::collide(a, Ta, b, Tb, touching, contact) == 0) return 0;
+  const fcl::Contactd& c = contact.getContact(0);
+  *pa = c.pos + 0.5 * c.penetration_depth * c.normal;
+  *pb = c.pos - 0.5 * c.penetration_depth * c.normal;
+  return -c.penetration_depth;
+}
+
+}  // namespace
+
+// The smallest signed distance over the shape pairs, then d' = n·(v₂ − v₁) with n
+// the unit vector from the closest point on body1 to the one on body2, reversed in
+// penetration (§13).
 ClearanceValue ClearanceEvaluator::Evaluate(const SystemState& s, int pair, bool with_rate) const {
   const ClearancePair& p = pairs_[pair];
   const BodyKinematics &k1 = s.Kin(p.body1), &k2 = s.Kin(p.body2);
   const Geometry &g1 = Of(p.body1), &g2 = Of(p.body2);
   const fcl::Transform3d T1 = BodyPose(k1), T2 = BodyPose(k2);
-  fcl::DistanceRequestd request(true, true, 0.0, 0.0, tolerance_);
-  fcl::DistanceResultd result;
   ClearanceValue best;
   best.distance = std::numeric_limits<double>::infinity();
+  Vec3 pa, pb;
   for (size_t a = 0; a < g1.shapes.size(); ++a)
     for (size_t b = 0; b < g2.shapes.size(); ++b) {
-      result.clear();
-      const double d = fcl::distance(g1.shapes[a].get(), T1 * g1.in_body[a], g2.shapes[b].get(), T2 * g2.in_body[b],
-                                     request, result);
+      const double d = ShapePairDistance(g1.shapes[a].get(), T1 * g1.in_body[a], g2.shapes[b].get(),
+                                         T2 * g2.in_body[b], tolerance_, &pa, &pb);
       if (!(d < best.distance)) continue;
       best.distance = d;
-      best.point1 = result.nearest_points[0];
-      best.point2 = result.nearest_points[1];
+      best.point1 = pa;
+      best.point2 = pb;
     }
   best.rate = std::nan("");
   const Vec3 gap = best.point2 - best.point1;

@@ -101,7 +101,7 @@ void AddClearanceCheck(const Model& m, CheckReport* r) {
                        ClearanceWhere(m, p)});
   c.tightest = sweep.tightest;
   if (!m.expect.min_clearance) return;
-  ExpectationResult e{"min_clearance", ExpectValue::Of(*m.expect.min_clearance * L), {}, false};
+  ExpectationResult e{"min_clearance", ExpectValue::Of(*m.expect.min_clearance * L), {}, false, ""};
   if (sweep.tightest >= 0) {
     const ClearanceMinimum& t = sweep.pairs[sweep.tightest];
     e.actual = ExpectValue::Of(t.clearance * L);

@@ -165,7 +165,9 @@ TEST(Clearance, BoxOnASliderTouchesTheFixedBoxAtTheClosedFormTime) {
   for (int r = 0; r < run.rows(); ++r) {
     const double t = run.at(r, 0), closed = X - gx / 2 - (v * t + sx / 2);
     if (closed > 0) worst = std::max(worst, std::abs(run.at(r, gap) - closed));
-    if (closed > 0) EXPECT_NEAR(run.at(r, gap + 1), -v, 1e-9) << t;
+    if (closed > 0) {
+      EXPECT_NEAR(run.at(r, gap + 1), -v, 1e-9) << t;
+    }
   }
   std::printf("[measured] box-box clearance off the closed form by %.2e m\n", worst);
   EXPECT_LT(worst, 1e-9);
