@@ -114,7 +114,8 @@ std::optional<std::pair<ContactWatch::Probe, ContactWatch::Probe>> ContactWatch:
 }
 
 // Bisection on the sign of the clearance over [a, b] (a clear, b touching) to
-// kContactResolution, then the secant of the two clearances inside the bracket.
+// kContactResolution, then the secant of the two clearances inside the bracket; the
+// contact point is between the closest points at that time.
 ContactHit ContactWatch::Locate(KinematicsWorkspace& ws, const SystemState& prev, int pair, Probe a, Probe b) const {
   while (b.state.t - a.state.t > kContactResolution) {
     Probe mid = Solve(ws, prev, 0.5 * (a.state.t + b.state.t), pair);
@@ -123,11 +124,10 @@ ContactHit ContactWatch::Locate(KinematicsWorkspace& ws, const SystemState& prev
   }
   const double t = a.state.t + (b.state.t - a.state.t) * a.distance / (a.distance - b.distance);
   const ClearancePair& p = eval_->pairs()[pair];
-  const ClearanceValue v = eval_->Evaluate(a.state, pair, false);
+  const Probe at = Solve(ws, prev, t, pair);
+  const ClearanceValue v = eval_->Evaluate(at.state, pair, false);
   ContactHit hit{t, p.output, p.body1, p.body2, 0.5 * (v.point1 + v.point2), 0, false, {}};
-  SystemState at = a.state;
-  EvalDriverFunctions(model_, t, &at);
-  for (const Jet& d : at.driver_values) hit.driver_values.push_back(d.c[0]);
+  for (const Jet& d : at.state.driver_values) hit.driver_values.push_back(d.c[0]);
   return hit;
 }
 

@@ -21,7 +21,7 @@ struct ContactHit {
   double t = 0;                 // the first contact (s); at the start: the first row's time
   int output = -1;              // the clearance output of the pair
   BodyIndex body1 = kGround, body2 = kGround;
-  Vec3 point = Vec3::Zero();    // global (m): between the closest points just before contact
+  Vec3 point = Vec3::Zero();    // global (m): between the closest points at t
   double clearance = 0;         // at the start: the (negative) clearance there; else 0
   bool at_start = false;        // already touching on the first row (not located)
   std::vector<double> driver_values;  // SI, at t
