@@ -74,13 +74,15 @@ std::vector<ContactHit> ContactWatch::Check(KinematicsWorkspace& ws, const Syste
     const double before = distance_[k];
     distance_[k] = eval_->Evaluate(s, k, false).distance;
     if (!(before > 0)) continue;  // in contact at the last row: not a new contact
-    const Probe a{prev, before}, b{s, distance_[k]};
+    // The probes (copies of the poses) only where a contact is possible: rows far
+    // apart allocate nothing here.
     if (distance_[k] <= 0) {
-      hits.push_back(Locate(ws, prev, k, a, b));
+      hits.push_back(Locate(ws, prev, k, Probe{prev, before}, Probe{s, distance_[k]}));
       continue;
     }
+    if (!MayTouchBetween(k, prev, before, s, distance_[k])) continue;
     int budget = kSearchBudget;
-    if (const auto bracket = Search(ws, prev, k, a, b, &budget))
+    if (const auto bracket = Search(ws, prev, k, Probe{prev, before}, Probe{s, distance_[k]}, &budget))
       hits.push_back(Locate(ws, prev, k, bracket->first, bracket->second));
   }
   std::sort(hits.begin(), hits.end(), [](const ContactHit& x, const ContactHit& y) { return x.t < y.t; });
@@ -91,13 +93,14 @@ std::vector<ContactHit> ContactWatch::Check(KinematicsWorkspace& ws, const Syste
 // body1 by more than δ = |Δc| + 2 sin(θ/2) ρ along the chord from a to b (Δc: its
 // origin's move, θ: the relative turn); the shapes cannot meet on that chord when
 // the two clearances add up to more than δ.
-bool ContactWatch::MayTouchBetween(int pair, const Probe& a, const Probe& b) const {
+bool ContactWatch::MayTouchBetween(int pair, const SystemState& a, double da, const SystemState& b,
+                                   double db) const {
   const ClearancePair& p = eval_->pairs()[pair];
-  const auto [Ra, ca] = Relative(a.state, p);
-  const auto [Rb, cb] = Relative(b.state, p);
+  const auto [Ra, ca] = Relative(a, p);
+  const auto [Rb, cb] = Relative(b, p);
   const double cos_turn = std::clamp(0.5 * ((Rb * Ra.transpose()).trace() - 1), -1.0, 1.0);
   const double chord = (cb - ca).norm() + 2 * std::sin(0.5 * std::acos(cos_turn)) * eval_->Reach(p.body2);
-  return a.distance + b.distance <= kPathMargin * chord;
+  return da + db <= kPathMargin * chord;
 }
 
 // Depth first in time order between two clear poses: halve while the bodies may
@@ -105,7 +108,9 @@ bool ContactWatch::MayTouchBetween(int pair, const Probe& a, const Probe& b) con
 // or the resolution runs out.
 std::optional<std::pair<ContactWatch::Probe, ContactWatch::Probe>> ContactWatch::Search(
     KinematicsWorkspace& ws, const SystemState& prev, int pair, const Probe& a, const Probe& b, int* budget) const {
-  if (*budget <= 0 || b.state.t - a.state.t <= kContactResolution || !MayTouchBetween(pair, a, b)) return std::nullopt;
+  if (*budget <= 0 || b.state.t - a.state.t <= kContactResolution ||
+      !MayTouchBetween(pair, a.state, a.distance, b.state, b.distance))
+    return std::nullopt;
   --*budget;
   const Probe mid = Solve(ws, prev, 0.5 * (a.state.t + b.state.t), pair);
   if (mid.distance <= 0) return std::make_pair(a, mid);

@@ -44,7 +44,7 @@ class ContactWatch {
     SystemState state;
     double distance;
   };
-  bool MayTouchBetween(int pair, const Probe& a, const Probe& b) const;
+  bool MayTouchBetween(int pair, const SystemState& a, double da, const SystemState& b, double db) const;
   std::optional<std::pair<Probe, Probe>> Search(KinematicsWorkspace& ws, const SystemState& prev, int pair,
                                                 const Probe& a, const Probe& b, int* budget) const;
   ContactHit Locate(KinematicsWorkspace& ws, const SystemState& prev, int pair, Probe a, Probe b) const;
