@@ -194,6 +194,27 @@ TEST(Clearance, ThinFastBoxTouchesStrictlyBetweenTwoClearRows) {
   EXPECT_LT(run.report.contacts[0].t, 0.06);
 }
 
+// The slider's box given as a convex hull of its 8 corners (and a point inside):
+// the same clearances and contact as the box.
+TEST(Clearance, ConvexHullOfABoxsCornersMeasuresLikeTheBox) {
+  const double v = 0.1, sx = 0.02, gx = 0.02, X = 0.1033;
+  json j = SliderPastBox(v, sx, gx, X, 1, 100);
+  json corners = json::array({{0, 0, 0}});
+  for (int k = 0; k < 8; ++k) corners.push_back({k & 1 ? sx / 2 : -sx / 2, k & 2 ? 0.01 : -0.01, k & 4 ? 0.01 : -0.01});
+  j["bodies"][0]["shape"] = {{"type", "convex"}, {"points", corners}};
+  const Motion run = RunMotion(FromJson(j), AnalysisOptions{}, TableOptions{});
+  const int gap = run.layout().Find("clearance_slider_ground");
+  double worst = 0;
+  for (int r = 0; r < run.rows(); ++r) {
+    const double t = run.at(r, 0), closed = X - gx / 2 - (v * t + sx / 2);
+    if (closed > 0) worst = std::max(worst, std::abs(run.at(r, gap) - closed));
+  }
+  std::printf("[measured] convex hull of the box: clearance off the closed form by %.2e m\n", worst);
+  EXPECT_LT(worst, 1e-9);
+  ASSERT_EQ(run.report.contacts.size(), 1u);
+  EXPECT_NEAR(run.report.contacts[0].t, (X - gx / 2 - sx / 2) / v, 1e-9);
+}
+
 // ---- A four-bar's coupler passing a post --------------------------------------
 
 constexpr double kPostX = 50, kPostY = -20, kPostR = 5, kCapsuleR = 3;  // mm
