@@ -25,7 +25,7 @@ SEMANTIC = {
     "duplicate-body", "unknown-body-ref", "joint-to-itself", "duplicate-joint", "universal-not-perpendicular",
     "driver-on-spherical", "translation-on-revolute", "driver-unknown-joint", "driver-bad-expression",
     "driver-unknown-function", "driver-table-unsorted", "end-before-start", "orientation-not-rotation",
-    "output-sequence-on-revolute", "distance-zero-length",
+    "output-sequence-on-revolute", "distance-zero-length", "clearance-unknown-body",
     "position-nan-string",  # a string is an expression since parameters: "NaN" names no parameter
 }
 # Not JSON at all (or not parseable by Python's json): only the loader is asked.

@@ -103,6 +103,22 @@ case("binary-file", "", None, "\x00\x01\x02\xff\xfe garbage")
 case("deeply-nested", "", None, "[" * 100000 + "]" * 100000)
 case("top-level-array", "", None, "[1, 2, 3]")
 case("bodies-not-array", "/bodies", setp(["bodies"], {"crank": {}}))
+# Clearance shapes and outputs (issue 28).
+case("shape-negative-radius", "/bodies/0/shape/radius",
+     setp(["bodies", 0, "shape"], {"type": "sphere", "radius": -5, "center": [20, 0, 0]}))
+case("convex-three-points", "/bodies/1/shapes/1/points",
+     setp(["bodies", 1, "shapes"], [{"type": "capsule", "radius": 3, "length": 80, "axis": [1, 0, 0]},
+                                    {"type": "convex", "points": [[0, 0, 0], [10, 0, 0], [0, 10, 0]]}]))
+case("shape-unknown-kind", "/bodies/2/shape/type", setp(["bodies", 2, "shape"], {"type": "cone", "radius": 5, "length": 10}))
+
+
+def clearance_to_unknown_body(d):
+    d["bodies"][0]["shape"] = {"type": "box", "size": [40, 5, 5]}
+    d["bodies"][2]["shape"] = {"type": "box", "size": [20, 10, 10]}
+    d["outputs"].append({"type": "clearance", "body1": "crank", "body2": "slidr"})
+
+
+case("clearance-unknown-body", "/outputs/1/body2", clearance_to_unknown_body)
 
 if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)

@@ -31,6 +31,7 @@ struct PyCheckReport {
 inline py::object ExpectValueToPython(const mechkin::ExpectValue& v) {
   if (v.kind == mechkin::ExpectValue::Kind::Count) return py::int_(v.count);
   if (v.kind == mechkin::ExpectValue::Kind::Word) return py::str(v.word);
+  if (v.kind == mechkin::ExpectValue::Kind::Number) return py::float_(v.number);
   return py::none();
 }
 

@@ -167,6 +167,7 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   if (r.mobility->locked)
     r.warnings.push_back({"/joints", r.mobility->verdict, "fix the joints before adding or removing drivers"});
   AddExpectations(m, &r);
+  if (m.expect.min_clearance) AddClearanceCheck(m, &r);
   AddGeometry(m, &r);
   AddAssembly(m, &r);
   WarnLimitsAtDesignPose(m, &r);

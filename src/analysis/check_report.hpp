@@ -19,18 +19,33 @@ namespace mechkin {
 /// An expected or actual value of an `expect` key: a count, a word, or absent
 /// (not computed, e.g. when the design pose does not assemble).
 struct ExpectValue {
-  enum class Kind { Absent, Count, Word } kind = Kind::Absent;
+  enum class Kind { Absent, Count, Word, Number } kind = Kind::Absent;
   int count = 0;
   std::string word;
-  static ExpectValue Of(int n) { return {Kind::Count, n, ""}; }
-  static ExpectValue Of(const std::string& w) { return {Kind::Word, 0, w}; }
-  bool operator==(const ExpectValue& o) const { return kind == o.kind && count == o.count && word == o.word; }
+  double number = 0;  // Number: a length in the file's unit (min_clearance)
+  static ExpectValue Of(int n) { return {Kind::Count, n, "", 0}; }
+  static ExpectValue Of(const std::string& w) { return {Kind::Word, 0, w, 0}; }
+  static ExpectValue Of(double x) { return {Kind::Number, 0, "", x}; }
+  bool operator==(const ExpectValue& o) const {
+    return kind == o.kind && count == o.count && word == o.word && number == o.number;
+  }
 };
 
 struct ExpectationResult {
-  std::string key;  // grubler, mobility, redundant, idle, driven
+  std::string key;  // grubler, mobility, redundant, idle, driven, min_clearance
   ExpectValue expected, actual;
   bool held = false;
+  std::string where;  // min_clearance: the tightest pair and where ("" for the others)
+};
+
+/// `check --clearance` (analysis/clearance_sweep.hpp), in the file's length unit.
+struct ClearanceSection {
+  struct Pair { std::string body1, body2, output; double clearance, t; std::string where; };
+  std::vector<Pair> pairs;
+  int tightest = -1;  // index into pairs (−1: none)
+  int rows = 0;
+  bool complete = false;
+  std::string note, length_unit;
 };
 
 /// What the file's numbers make of each body (issue "Parametric designs", item 2):
@@ -73,10 +88,14 @@ struct CheckReport {
   std::string length_unit, angle_unit;      // of geometry and parameters
   std::optional<BranchCount> branches;      // with `check --branches`
   std::optional<AssemblySection> assembly;  // files placed by markers only
+  std::optional<ClearanceSection> clearance;  // with `check --clearance` or expect min_clearance
   /// Valid and every expectation held.
   bool ok() const;
 };
 
+/// Sweeps the clearances into r->clearance and checks expect min_clearance
+/// (analysis/clearance_sweep.cpp).
+void AddClearanceCheck(const Model& m, CheckReport* r);
 /// Checks one loaded file (never throws for bad input).
 CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded);
 /// Reads and checks one file.

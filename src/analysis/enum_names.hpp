@@ -56,12 +56,18 @@ struct EnumNames<StopKind> {
                                                 {StopKind::SingularPosition, "singular_position"},
                                                 {StopKind::SolveFailed, "solve_failed"},
                                                 {StopKind::Interrupted, "interrupted"},
-                                                {StopKind::JointLimit, "joint_limit"}};
+                                                {StopKind::JointLimit, "joint_limit"},
+                                                {StopKind::Contact, "contact"}};
 };
 // At a joint's limits (`run --on-limit`, Python's Model.run(on_limit=...)).
 template <>
 struct EnumNames<LimitAction> {
   static constexpr EnumName<LimitAction> kAll[] = {{LimitAction::Stop, "stop"}, {LimitAction::Report, "report"}};
+};
+// At a first contact of a clearance output's bodies (`run --on-contact`).
+template <>
+struct EnumNames<ContactAction> {
+  static constexpr EnumName<ContactAction> kAll[] = {{ContactAction::Stop, "stop"}, {ContactAction::Report, "report"}};
 };
 // `check`'s driving status (the `expect` key "driven").
 template <>
@@ -87,6 +93,8 @@ struct EnumNames<Quantity> {
       {Quantity::OrientationParameter, "orientation_parameter"},
       {Quantity::RotationVector, "rotation_vector"},
       {Quantity::GimbalLock, "gimbal_lock"},
+      {Quantity::Clearance, "clearance"},
+      {Quantity::ClearancePoint, "clearance_point"},
       {Quantity::DriverEffort, "driver_effort"},
       {Quantity::DriverPower, "driver_power"},
       {Quantity::JointForce, "joint_force"},

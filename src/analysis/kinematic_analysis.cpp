@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "analysis/assembly.hpp"
+#include "analysis/clearance.hpp"
 #include "spec/diagnostic.hpp"
 #include "analysis/error_bounds.hpp"
 #include "analysis/row_selection.hpp"
@@ -141,6 +142,8 @@ class Stepper {
     solve_.max_iterations = options.max_iterations;
     predictor_ = std::min(options.predictor_order, options.order);
     CheckSetAsideOnSolvedBodies();
+    if (!ClearanceOutputPairs(model_).empty())
+      observers_.push_back(MakeContactObserver(model_, ws_->options().needed_bodies, options.on_contact_stop));
   }
   /// Runs every row; fills the report's stop reason when it ends early.
   void Run(const StepCallback& on_step, AnalysisReport* rep);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/contact_watch.hpp"
 #include "analysis/joint_limits.hpp"
 #include "analysis/forces.hpp"
 #include "analysis/sensitivity.hpp"
@@ -62,6 +63,9 @@ struct AnalysisOptions {
   // Joint limits (analysis/joint_limits.hpp): a crossing is located and noted and the
   // run goes on (`--on-limit report`); false: the run stops there.
   bool on_limit_report = false;
+  // Clearance outputs (analysis/contact_watch.hpp): a first contact is located and
+  // noted and the run goes on (`--on-contact report`, the default); true: it stops there.
+  bool on_contact_stop = false;
   InterruptPoll interrupted;  // polled once per step (empty: never)
   bool IsValid(std::string* error) const;
 };
@@ -81,7 +85,7 @@ struct StepDiagnostics {
 };
 
 /// Why a run ended before its last row.
-enum class StopKind { None, Refused, AssemblyFailed, SingularPosition, SolveFailed, Interrupted, JointLimit };
+enum class StopKind { None, Refused, AssemblyFailed, SingularPosition, SolveFailed, Interrupted, JointLimit, Contact };
 
 /// A change of the equations set aside along the motion (redundancy that follows it).
 struct Reselection {
@@ -95,6 +99,7 @@ struct AnalysisReport {
   std::optional<SingularPosition> singular;
   std::optional<LimitOfMotion> limit;     // where the position solve fails: the fold located
   std::vector<JointLimitHit> joint_limits;  // joint limits reached, located (the first stops the run unless reported)
+  std::vector<ContactHit> contacts;        // first contacts of clearance outputs' bodies, located
   std::string message;                    // failure explanation (empty on success)
   std::vector<std::string> set_aside;     // redundant equations, by name (at the start)
   std::vector<Reselection> reselections;  // later changes of that set

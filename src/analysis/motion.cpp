@@ -193,6 +193,8 @@ void MotionLayout::AddOutput(const Model& model, int o) {
     AddVelocityRatio(model, o);
   } else if (out.kind == OutputKind::Orientation) {
     AddOrientation(out, o, A);
+  } else if (out.kind == OutputKind::Clearance) {
+    AddClearance(out, o, L);
   } else {
     AddJointCoordinates(model.joints[out.joint].type->coordinates, out, o, L, A);
   }
@@ -519,6 +521,7 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
   if (op.kind == OutputKind::Point) return PointValues(s, o, out);
   if (op.kind == OutputKind::VelocityRatio) return VelocityRatioValues(s, o, out);
   if (op.kind == OutputKind::Orientation) return OrientationValues(s, o, out);
+  if (op.kind == OutputKind::Clearance) return ClearanceValues(s, o, out);
   if (op.kind == OutputKind::Distance) {
     const Jet dist = DistanceJet(s, op, order);
     for (int k = 0; k <= order; ++k) *out++ = dist.Derivative(k) * len;

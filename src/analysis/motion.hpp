@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/clearance.hpp"
 #include "analysis/kinematic_analysis.hpp"
 
 namespace mechkin {
@@ -34,6 +35,8 @@ enum class Quantity {
   OrientationParameter,  // orientation output: relative Euler parameters e0..e3
   RotationVector,     // orientation output "axis-angle": θn, component x/y/z
   GimbalLock,         // orientation output: 1 where the sequence's first and third angles are undefined
+  Clearance,          // clearance output: the bodies' minimum distance, order 0..1 (analysis/clearance.hpp)
+  ClearancePoint,     // its closest points, global: component 0..2 on body1, 3..5 on body2
   DriverEffort,       // torque or force a driver applies (".effort"), order 0..1
   DriverPower,        // ".power"
   JointForce,         // reaction force on body2 by body1, global x/y/z (".fx")
@@ -126,6 +129,7 @@ class MotionLayout {
   void AddOrientation(const Output& out, int o, const std::string& angle_unit);
   void AddJointCoordinates(JointCoordinates c, const Output& out, int o, const std::string& length_unit,
                            const std::string& angle_unit);
+  void AddClearance(const Output& out, int o, const std::string& length_unit);
   void AddRated(Quantity q, const std::string& subject, int index, const std::string& name, int component,
                 const std::string& unit);
   void AddSeries(Quantity q, const std::string& subject, int index, const std::string& name, int component,
@@ -178,6 +182,7 @@ class RowEvaluator {
   double* OrientationValues(const SystemState& s, int o, double* out);
   double* UniversalValues(const SystemState& s, int o, double* out);
   double* PlanarSlides(const SystemState& s, int o, double* out) const;
+  double* ClearanceValues(const SystemState& s, int o, double* out);
   Jet ScalarOutputJet(const SystemState& s, int o) const;
 
   const Model& model_;
@@ -191,6 +196,9 @@ class RowEvaluator {
   double last_t_ = 0;
   bool first_row_ = true;
   std::vector<double> follow_row_;  // scratch for Follow (outside the step loop)
+  // Clearance outputs: their pairs' evaluator (made on the first row) and, per output, its pair.
+  std::shared_ptr<ClearanceEvaluator> clearance_;
+  std::vector<int> clearance_pair_;
 };
 
 struct MotionStop {

@@ -77,6 +77,7 @@ RunPlan PlanRun(const Model& model, const RunRequest& r) {
   a.predictor_order = r.predictor_order;
   a.keep_step_diagnostics = r.keep_step_diagnostics;
   a.on_limit_report = r.on_limit_report;
+  a.on_contact_stop = r.on_contact_stop;
   a.interrupted = r.interrupted;
   DecideComputation(model, &plan);
   return plan;

@@ -32,6 +32,9 @@ enum class ForcesChoice {
 /// or note it and go on. The CLI's `--on-limit` and Python's `on_limit` (their names
 /// in analysis/enum_names.hpp).
 enum class LimitAction { Stop, Report };
+/// What a run does at a first contact of a clearance output's bodies (`run --on-contact`):
+/// note it and go on (the default), or stop there.
+enum class ContactAction { Stop, Report };
 
 struct RunRequest {
   // --- what the table shows ---
@@ -51,6 +54,7 @@ struct RunRequest {
   bool on_limit_report = false;       // joint limits: note a crossing and go on (default: stop there)
   LimitAction limit_action() const { return on_limit_report ? LimitAction::Report : LimitAction::Stop; }
   void set_limit_action(LimitAction a) { on_limit_report = a == LimitAction::Report; }
+  bool on_contact_stop = false;       // clearance outputs: stop at a first contact (default: note it)
   InterruptPoll interrupted;          // polled between steps and runs: true stops (Interrupted)
 
   // The ranges (kMinTolerance, kMaxTolerance, order 0..kMaxOrder) and their messages are

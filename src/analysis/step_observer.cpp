@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "analysis/contact_watch.hpp"
 #include "analysis/forces.hpp"
 #include "analysis/joint_limits.hpp"
 #include "analysis/sensitivity.hpp"
@@ -100,6 +101,19 @@ bool JointLimitObserver::Between(const StepContext& ctx, const SystemState& s, A
   return false;
 }
 
+class ContactObserver : public StepObserver {
+ public:
+  ContactObserver(const Model& model, const std::vector<int>& needed_bodies, bool stop)
+      : watch_(model, needed_bodies), stop_(stop) {}
+  bool Observe(const StepContext& ctx, SystemState& s, StepDiagnostics*, AnalysisReport* rep) override {
+    return !WatchContacts(&watch_, ctx.ws, ctx.previous, s, ctx.step, ctx.predictor_order, stop_, rep);
+  }
+
+ private:
+  ContactWatch watch_;
+  bool stop_;
+};
+
 class RowDelivery : public StepObserver {
  public:
   RowDelivery(const AnalysisOptions& options, const StepCallback& on_step) : options_(options), on_step_(on_step) {}
@@ -139,6 +153,10 @@ std::unique_ptr<StepObserver> MakeSensitivityObserver(std::unique_ptr<Sensitivit
 std::unique_ptr<StepObserver> MakeJointLimitObserver(const Model& model, const AnalysisOptions& options) {
   if (JointLimitWatch(model).empty()) return nullptr;
   return std::make_unique<JointLimitObserver>(model, options);
+}
+
+std::unique_ptr<StepObserver> MakeContactObserver(const Model& model, const std::vector<int>& needed_bodies, bool stop) {
+  return std::make_unique<ContactObserver>(model, needed_bodies, stop);
 }
 
 std::unique_ptr<StepObserver> MakeRowDelivery(const AnalysisOptions& options, const StepCallback& on_step) {

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <memory>
+#include <vector>
 
 #include "analysis/kinematic_analysis.hpp"
 #include "analysis/row_selection.hpp"
@@ -42,6 +43,9 @@ std::unique_ptr<StepObserver> MakeSensitivityObserver(std::unique_ptr<Sensitivit
 /// Joint limits: a start outside them, a crossing located between rows; stops the
 /// run unless options.on_limit_report (then a note).
 std::unique_ptr<StepObserver> MakeJointLimitObserver(const Model& model, const AnalysisOptions& options);
+/// Contacts between the clearance outputs' bodies (analysis/contact_watch.hpp): a
+/// contact found between rows is located; it stops the run when `stop`, else a note.
+std::unique_ptr<StepObserver> MakeContactObserver(const Model& model, const std::vector<int>& needed_bodies, bool stop);
 /// Last: the step's time, the angle references, the kept diagnostics, the row to
 /// `on_step`, then the interrupt poll.
 std::unique_ptr<StepObserver> MakeRowDelivery(const AnalysisOptions& options, const StepCallback& on_step);

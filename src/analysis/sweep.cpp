@@ -163,6 +163,7 @@ std::string StatusOf(StopKind stop) {
     case StopKind::SolveFailed: return "failed";
     case StopKind::Interrupted: return "interrupted";
     case StopKind::JointLimit: return "joint limit";
+    case StopKind::Contact: return "contact";
   }
   return "failed";
 }

@@ -17,9 +17,33 @@ json ValueJson(const ExpectValue& v) {
   switch (v.kind) {
     case ExpectValue::Kind::Count: return v.count;
     case ExpectValue::Kind::Word: return v.word;
+    case ExpectValue::Kind::Number: return v.number;
     case ExpectValue::Kind::Absent: break;
   }
   return nullptr;
+}
+
+// `check --clearance`: each pair's smallest clearance and where; the tightest first.
+json ClearanceJson(const ClearanceSection& c) {
+  json pairs = json::array();
+  for (const auto& p : c.pairs)
+    pairs.push_back({{"body1", p.body1}, {"body2", p.body2}, {"output", p.output}, {"min_clearance", p.clearance},
+                     {"t", p.t}, {"where", p.where}});
+  json j = {{"pairs", pairs}, {"unit", c.length_unit}, {"rows", c.rows}, {"complete", c.complete}};
+  if (c.tightest >= 0) j["tightest"] = pairs[c.tightest];
+  if (!c.note.empty()) j["note"] = c.note;
+  return j;
+}
+
+void PrintClearance(const ClearanceSection& c, std::ostream& out) {
+  if (c.tightest < 0) {
+    out << "  clearance: " << (c.pairs.empty() ? "no pair of bodies with shapes to measure" : "no row: " + c.note) << "\n";
+    return;
+  }
+  out << "  clearance: tightest " << c.pairs[c.tightest].where << " (" << c.rows << " rows swept"
+      << (c.complete ? "" : "; stopped early: " + c.note) << ")\n";
+  for (size_t k = 0; k < c.pairs.size() && c.pairs.size() > 1; ++k)
+    out << "    " << c.pairs[k].where << "\n";
 }
 
 json MobilityJson(const MobilityReport& r, int drivers) {
@@ -231,6 +255,7 @@ void PrintSummary(const CheckReport& r, std::ostream& out) {
         << " assembled; joints mounted backwards not counted)\n";
   PrintGeometry(r, out);
   PrintAssembly(r, out);
+  if (r.clearance) PrintClearance(*r.clearance, out);
 }
 
 }  // namespace
@@ -244,7 +269,10 @@ json CheckReportJson(const CheckReport& r) {
   j["expect"] = json::array();
   for (const auto& e : r.expectations)
     j["expect"].push_back({{"key", e.key}, {"expected", ValueJson(e.expected)}, {"actual", ValueJson(e.actual)}, {"held", e.held}});
+  for (size_t k = 0; k < r.expectations.size(); ++k)
+    if (!r.expectations[k].where.empty()) j["expect"][k]["where"] = r.expectations[k].where;
   if (!r.valid) return j;
+  if (r.clearance) j["clearance"] = ClearanceJson(*r.clearance);
   j["name"] = r.name;
   j["bodies"] = r.bodies;
   json joints = json::object();
@@ -291,7 +319,8 @@ void PrintCheckReport(const CheckReport& r, std::ostream& out) {
   for (const auto& w : r.warnings) out << "  warning: " << w.pointer << ": " << w.message << "\n";
   for (const auto& e : r.expectations)
     out << "  expect " << e.key << " = " << ValueJson(e.expected).dump() << ": "
-        << (e.held ? "held" : "FAILED (actual " + ValueJson(e.actual).dump() + ")") << "\n";
+        << (e.held ? "held" : "FAILED (actual " + ValueJson(e.actual).dump() + ")")
+        << (e.where.empty() ? "" : ": " + e.where) << "\n";
 }
 
 }  // namespace mechkin

@@ -94,6 +94,23 @@ BodyColumns ColumnsOf(const Motion& m, int b) {
   return {m.layout().Find(Quantity::BodyPosition, b, 0, 0), m.layout().Find(Quantity::EulerParameter, b, 0, 0)};
 }
 
+// The page draws boxes, cylinders and spheres: a capsule as the cylinder of its
+// whole length, a convex hull as its bounding box.
+Shape DrawnShape(const Shape& sh) {
+  Shape out = sh;
+  if (sh.kind == Shape::Kind::Capsule) {
+    out.kind = Shape::Kind::Cylinder;
+    out.length = sh.length + 2 * sh.radius;
+  } else if (sh.kind == Shape::Kind::Convex && !sh.points.empty()) {
+    Vec3 lo = sh.points[0], hi = sh.points[0];
+    for (const Vec3& p : sh.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    out.kind = Shape::Kind::Box;
+    out.size = hi - lo;
+    out.center = sh.center + 0.5 * (lo + hi);
+  }
+  return out;
+}
+
 double Col(const Motion& m, int row, int col, int offset) { return m.at(row, col + offset); }
 
 void WriteBodies(const Model& model, const Motion& m, const ScenePoints& sp, const std::vector<int>& frames, double L, Json* j) {
@@ -106,7 +123,9 @@ void WriteBodies(const Model& model, const Motion& m, const ScenePoints& sp, con
     j->Key("name"), j->Str(model.bodies[b].name), j->Raw(","), j->Key("points"), j->Raw("[");
     for (size_t k = 0; k < sp.body[b].size(); ++k) { if (k) j->Raw(","); j->Vec(sp.body[b][k], L); }
     j->Raw("],");
-    if (const auto& sh = model.bodies[b].shape) {
+    if (const auto& drawn = model.bodies[b].shape) {
+      const Shape sh_drawn = DrawnShape(*drawn);
+      const Shape* sh = &sh_drawn;
       static const char* kKinds[] = {"box", "cylinder", "sphere"};
       j->Key("shape"), j->Raw("{"), j->Key("type"), j->Str(kKinds[static_cast<int>(sh->kind)]), j->Raw(",");
       j->Key("size"), j->Vec(sh->size, L), j->Raw(","), j->Key("radius"), j->Num(sh->radius * L), j->Raw(",");

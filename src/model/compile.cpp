@@ -25,6 +25,7 @@ std::optional<Model> Compiler::Run() {
   by_markers_ = spec_.UsesMarkers();
   out_.SetPlace(Section::Ground);
   CompileMarkers(kGround, spec_.ground_markers);
+  model_.ground_shapes = CompileShapes(spec_.ground_shapes);
   for (const BodySpec& b : spec_.bodies) Place(Section::Bodies, b.pointer), CompileBody(b);
   for (const JointSpec& j : spec_.joints) Place(Section::Joints, j.pointer), CompileJoint(j);
   if (by_markers_) PlaceByMarkers();
@@ -347,6 +348,7 @@ void Compiler::CompileExpect() {
   model_.expect.redundant = Integer(e.redundant, "redundant");
   model_.expect.idle = Integer(e.idle, "idle");
   model_.expect.driven = e.driven;
+  if (const auto c = Value(e.min_clearance)) model_.expect.min_clearance = *c * length_;
 }
 
 // "gravity": [gx, gy, gz] in length/s².

@@ -1,4 +1,4 @@
-// Bodies: design pose, inertia (in body coordinates), drawing shape.
+// Bodies: design pose, inertia (in body coordinates), shapes (compile_shapes.cpp).
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
@@ -38,6 +38,7 @@ void Compiler::CompileBody(const BodySpec& b) {
   body.name = *name;
   body.position = *pos;
   if (b.shape) body.shape = CompileShape(*b.shape);
+  body.shapes = CompileShapes(b.shapes);
   if (b.inertia) {
     body.inertia = CompileInertia(*b.inertia, *pos, body.euler);
     if (!body.inertia) {
@@ -182,43 +183,6 @@ bool Compiler::CheckInertiaTensor(const Mat3& J, const std::string& ptr) {
     return false;
   }
   return true;
-}
-
-// For drawing only: a bad shape is reported but does not change the analysis.
-std::optional<Shape> Compiler::CompileShape(const ShapeSpec& o) {
-  if (!o.ok || !o.type) return std::nullopt;
-  const std::string& ptr = o.pointer;
-  Shape sh;
-  if (auto c = Vector(o.center, false)) sh.center = *c * length_;
-  auto positive = [&](const std::optional<Scalar>& value, const char* key) -> double {
-    auto v = Value(value);
-    if (!v || !(*v > 0)) {
-      Error(ptr + "/" + key, std::string("'") + key + "' must be a positive number", "give the size in units/length");
-      return 0;
-    }
-    return *v * length_;
-  };
-  if (*o.type == "box") {
-    sh.kind = Shape::Kind::Box;
-    auto size = Vector(o.size, true);
-    if (!size) Error(ptr + "/size", "a box needs 'size': [a, b, c] along the body axes");
-    else sh.size = size->cwiseAbs() * length_;
-  } else if (*o.type == "cylinder") {
-    sh.kind = Shape::Kind::Cylinder;
-    sh.radius = positive(o.radius, "radius");
-    sh.length = positive(o.length, "length");
-    if (auto a = Vector(o.axis, true)) {
-      if (a->norm() > 0) sh.axis = a->normalized();
-      else Error(ptr + "/axis", "the cylinder 'axis' is the zero vector", "give a direction, e.g. [0, 0, 1]");
-    }
-  } else if (*o.type == "sphere") {
-    sh.kind = Shape::Kind::Sphere;
-    sh.radius = positive(o.radius, "radius");
-  } else {
-    Error(ptr + "/type", "unknown shape '" + Shorten(*o.type) + "'", "use box, cylinder or sphere");
-    return std::nullopt;
-  }
-  return sh;
 }
 
 }  // namespace mechkin

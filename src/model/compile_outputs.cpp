@@ -49,12 +49,13 @@ std::optional<TimeFunction> Compiler::CompileTable(const FunctionSpec& f, double
 }
 
 void Compiler::CompileOutput(const OutputSpec& o) {
-  bool ok = o.name && o.type;
-  if (o.name) ok = CheckOutputName(*o.name, o.pointer) && ok;
+  const std::optional<std::string> name = o.name ? o.name : DefaultOutputName(o);
+  bool ok = name && o.type;
+  if (name) ok = CheckOutputName(*name, o.pointer) && ok;
   if (!ok) return;
   Output out;
   if (!CompileOutputGeometry(o, &out)) return;
-  out.name = *o.name;
+  out.name = *name;
   model_.outputs.push_back(out);
 }
 
@@ -104,6 +105,7 @@ bool Compiler::CompileOutputGeometry(const OutputSpec& o, Output* out) {
   if (type == "orientation") return out->kind = OutputKind::Orientation, CompileOrientationOutput(o, out);
   if (type == "joint") return out->kind = OutputKind::JointCoordinate, CompileJointOutput(o, out);
   if (type == "angle") return out->kind = OutputKind::Angle, CompileAngleOutput(o, out);
+  if (type == "clearance") return out->kind = OutputKind::Clearance, CompileClearanceOutput(o, out);
   out->kind = OutputKind::Distance;
   auto b1 = BodyRef(o.body1, "body1", ptr);
   auto b2 = BodyRef(o.body2, "body2", ptr);

@@ -75,7 +75,12 @@ class Compiler {
                                     const std::string& ptr);
   std::optional<Mat3> CompilePrincipal(const InertiaSpec& in);
   bool CheckInertiaTensor(const Mat3& J, const std::string& ptr);
+
+  // Shapes (compile_shapes.cpp).
   std::optional<Shape> CompileShape(const ShapeSpec& o);
+  std::vector<Shape> CompileShapes(const std::vector<ShapeSpec>& shapes);
+  bool CompileRoundShape(const ShapeSpec& o, Shape* sh);
+  bool CompileConvex(const ShapeSpec& o, Shape* sh);
 
   // Markers (compile_markers.cpp).
   void CompileMarkers(BodyIndex body, const std::vector<MarkerSpec>& markers);
@@ -133,6 +138,9 @@ class Compiler {
   bool CompileOrientationOutput(const OutputSpec& o, Output* out);
   bool CompileSequence(const OutputSpec& o, Output* out);
   bool CompileAngleOutput(const OutputSpec& o, Output* out);
+  // Clearance outputs (compile_shapes.cpp).
+  std::optional<std::string> DefaultOutputName(const OutputSpec& o) const;
+  bool CompileClearanceOutput(const OutputSpec& o, Output* out);
   void CompileLoad(const LoadSpec& o);
   bool CompileForceOrTorque(const LoadSpec& o, bool force, Load* load);
   bool CompileSpring(const LoadSpec& o, Load* load);

@@ -32,12 +32,18 @@ struct Inertia {
   Mat3 moments = Mat3::Zero();     // inertia tensor J'_c about the centre (body axes)
 };
 
-/// Optional drawing geometry of a body (the viewer only): in body coordinates.
+/// Geometry of a body, in body coordinates (SI): the drawing's `shape` and what
+/// clearance outputs measure (docs/format.md "Clearance").
 struct Shape {
-  enum class Kind { Box, Cylinder, Sphere } kind = Kind::Box;
+  enum class Kind { Box, Cylinder, Sphere, Capsule, Convex } kind = Kind::Box;
   Vec3 size = Vec3::Zero();    // box: edge lengths along the body axes
-  double radius = 0, length = 0;  // cylinder (along `axis`), sphere (radius)
+  double radius = 0, length = 0;  // cylinder, capsule (along `axis`; length between the caps' centres), sphere
   Vec3 center = Vec3::Zero(), axis = Vec3::UnitZ();
+  // Convex: the hull's vertices (relative to `center`) and its faces, each as
+  // [n, i0, …, i(n−1)] counter-clockwise seen from outside (math/convex_hull.hpp).
+  std::vector<Vec3> points;
+  std::vector<int> faces;
+  int num_faces = 0;
 };
 
 struct Body {
@@ -46,6 +52,7 @@ struct Body {
   Vec4 euler;     // p at the design configuration (unit, scalar first)
   std::optional<Inertia> inertia;
   std::optional<Shape> shape;
+  std::vector<Shape> shapes;  // "shapes": clearance geometry besides `shape`
 };
 
 enum class LoadKind { Force, Torque, Spring };
@@ -140,7 +147,7 @@ struct Driver {
   bool general_angle = false;
 };
 
-enum class OutputKind { Point, JointCoordinate, Distance, Angle, VelocityRatio, Orientation };
+enum class OutputKind { Point, JointCoordinate, Distance, Angle, VelocityRatio, Orientation, Clearance };
 
 struct Output {
   std::string name;
@@ -215,6 +222,7 @@ struct Parameter {
 struct Expect {
   std::optional<int> grubler, mobility, redundant, idle;
   std::optional<std::string> driven;  // "full", "under", "over"
+  std::optional<double> min_clearance;  // m: every clearance along the motion at least this
 };
 
 /// How `mechkin view` shows the model (the file's "view"; no effect on the motion).
@@ -228,6 +236,7 @@ struct Model {
   std::string name, description, source;
   Units units;
   std::vector<Body> bodies;  // moving bodies only
+  std::vector<Shape> ground_shapes;  // "ground": {"shapes"}: clearance geometry of the frame (global)
   std::vector<Joint> joints;
   std::vector<Coupler> couplers;  // between joint coordinates, after the joints in Φ
   std::vector<Driver> drivers;

@@ -83,6 +83,9 @@ void ReadDriver(JsonReader& rd, const json& d, const std::string& ptr, Mechanism
 void ReadCoupler(JsonReader& rd, const json& c, const std::string& ptr, MechanismSpec* spec);
 void ReadOutput(JsonReader& rd, const json& o, const std::string& ptr, MechanismSpec* spec);
 void ReadGround(JsonReader& rd, const json& doc, MechanismSpec* spec);
+/// A "shape" object (nullopt: reported) and a "shapes" array of them (read_shapes.cpp).
+std::optional<ShapeSpec> ReadShape(JsonReader& rd, const json& o, const std::string& ptr);
+std::vector<ShapeSpec> ReadShapeList(JsonReader& rd, const json& shapes, const std::string& ptr);
 std::vector<MarkerSpec> ReadMarkers(JsonReader& rd, const json& markers, const std::string& ptr);
 void ReadLoad(JsonReader& rd, const json& o, const std::string& ptr, MechanismSpec* spec);
 /// A driver function: an expression string or {"table": [[t, v], ...]} (Invalid: reported).

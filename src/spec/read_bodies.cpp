@@ -91,30 +91,13 @@ InertiaSpec ReadInertia(JsonReader& rd, const json& in, const std::string& ptr) 
   return out;
 }
 
-// "shape": {"type": "box", "size"} | {"type": "cylinder", "radius", "length", "axis"}
-// | {"type": "sphere", "radius"}, with an optional "center"; for drawing only.
-std::optional<ShapeSpec> ReadShape(JsonReader& rd, const json& o, const std::string& ptr) {
-  ShapeSpec sh;
-  sh.pointer = ptr;
-  sh.type = rd.String(o, "type", ptr);
-  if (!rd.CheckObject(o, ptr, {"type", "size", "radius", "length", "axis", "center"}, {"type"}, "'shape'") ||
-      !sh.type)
-    return std::nullopt;
-  sh.center = rd.Vector(o, "center", ptr);
-  sh.size = rd.Vector(o, "size", ptr);
-  sh.axis = rd.Vector(o, "axis", ptr);
-  sh.radius = rd.Number(o, "radius", ptr);
-  sh.length = rd.Number(o, "length", ptr);
-  return sh;
-}
-
 }  // namespace
 
 // In a file whose joints name markers, "position" is an optional starting guess.
 void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, bool by_markers, MechanismSpec* spec) {
   const std::vector<std::string> required =
       by_markers ? std::vector<std::string>{"name"} : std::vector<std::string>{"name", "position"};
-  if (!rd.CheckObject(b, ptr, {"name", "description", "position", "orientation", "inertia", "shape", "markers"},
+  if (!rd.CheckObject(b, ptr, {"name", "description", "position", "orientation", "inertia", "shape", "shapes", "markers"},
                       required, "a body"))
     return;
   BodySpec body;
@@ -126,6 +109,7 @@ void ReadBody(JsonReader& rd, const json& b, const std::string& ptr, bool by_mar
     body.shape = ReadShape(rd, b.at("shape"), ptr + "/shape");
     if (!body.shape) body.shape = ShapeSpec{}, body.shape->ok = false, body.shape->pointer = ptr + "/shape";
   }
+  if (b.contains("shapes")) body.shapes = ReadShapeList(rd, b.at("shapes"), ptr + "/shapes");
   if (b.contains("markers")) body.markers = ReadMarkers(rd, b.at("markers"), ptr + "/markers");
   if (b.contains("inertia")) body.inertia = ReadInertia(rd, b.at("inertia"), ptr + "/inertia");
   spec->bodies.push_back(std::move(body));

@@ -157,12 +157,15 @@ void ReadExpect(JsonReader& rd, const json& doc, MechanismSpec* spec) {
   rd.diagnostics().SetPlace(Section::Expect);
   if (!doc.contains("expect")) return;
   const json& e = doc.at("expect");
-  if (!rd.CheckObject(e, "/expect", {"grubler", "mobility", "redundant", "idle", "driven"}, {}, "'expect'")) return;
+  if (!rd.CheckObject(e, "/expect", {"grubler", "mobility", "redundant", "idle", "driven", "min_clearance"}, {},
+                      "'expect'"))
+    return;
   ExpectSpec ex;
   ex.grubler = rd.Integer(e, "grubler", "/expect");
   ex.mobility = rd.Integer(e, "mobility", "/expect");
   ex.redundant = rd.Integer(e, "redundant", "/expect");
   ex.idle = rd.Integer(e, "idle", "/expect");
+  ex.min_clearance = rd.Number(e, "min_clearance", "/expect");
   if (auto s = rd.String(e, "driven", "/expect")) {
     if (*s == "full" || *s == "under" || *s == "over")
       ex.driven = *s;

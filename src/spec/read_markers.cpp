@@ -48,7 +48,8 @@ void ReadGround(JsonReader& rd, const json& doc, MechanismSpec* spec) {
   rd.diagnostics().SetPlace(Section::Ground);
   if (!doc.contains("ground")) return;
   const json& g = doc.at("ground");
-  if (!rd.CheckObject(g, "/ground", {"markers", "description"}, {}, "'ground'")) return;
+  if (!rd.CheckObject(g, "/ground", {"markers", "shapes", "description"}, {}, "'ground'")) return;
+  if (g.contains("shapes")) spec->ground_shapes = ReadShapeList(rd, g.at("shapes"), "/ground/shapes");
   if (g.contains("markers")) spec->ground_markers = ReadMarkers(rd, g.at("markers"), "/ground/markers");
 }
 

@@ -27,8 +27,10 @@ bool OutputKeys(JsonReader& rd, const std::optional<std::string>& type, const st
     return add({"body1", "point1", "body2", "point2"}, {"body1", "point1", "body2", "point2"});
   if (type && *type == "angle")
     return add({"body1", "vector1", "body2", "vector2", "about"}, {"body1", "vector1", "body2", "vector2"});
+  if (type && *type == "clearance") return add({"body1", "body2"}, {"body1", "body2"});
   if (type) {
-    const std::vector<std::string> types = {"point", "joint", "distance", "angle", "velocity_ratio", "orientation"};
+    const std::vector<std::string> types = {"point",          "joint",       "distance", "angle",
+                                            "velocity_ratio", "orientation", "clearance"};
     const std::string g = DidYouMean(*type, types);
     rd.Error(ptr + "/type", "unknown output type '" + Shorten(*type) + "'",
              (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(types));
@@ -146,6 +148,7 @@ void ReadOutput(JsonReader& rd, const json& o, const std::string& ptr, Mechanism
   out.type = rd.String(o, "type", ptr);
   std::vector<std::string> allowed = {"name", "description", "type"}, required = {"name", "type"};
   const bool known = OutputKeys(rd, out.type, ptr, &allowed, &required);
+  if (known && *out.type == "clearance") required.erase(required.begin());  // named body1~body2 by default
   if (known && *out.type == "point") {
     if (o.contains("point") && o.contains("marker"))
       rd.Error(ptr + "/marker", "a point output names either 'point' or 'marker'", "remove one of them");

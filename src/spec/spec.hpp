@@ -76,11 +76,15 @@ struct InertiaSpec {
   bool ok = true;
 };
 
-/// "shape" (drawing only): box, cylinder or sphere.
+/// "shape" (drawn, and measured by clearance outputs) or an element of "shapes":
+/// box, cylinder, sphere, capsule (radius, length, axis) or convex (the hull of
+/// "points"), in the body's coordinates.
 struct ShapeSpec {
   std::optional<std::string> type;
   std::optional<Vector3Spec> center, size, axis;
   std::optional<Scalar> radius, length;
+  std::vector<Vector3Spec> points;  // convex
+  std::string points_error;         // convex: "'points' must be an array of [x, y, z]"
   std::string pointer;
   bool ok = true;
 };
@@ -100,6 +104,7 @@ struct BodySpec {
   std::optional<OrientationSpec> orientation;
   std::optional<InertiaSpec> inertia;
   std::optional<ShapeSpec> shape;
+  std::vector<ShapeSpec> shapes;  // "shapes": more clearance geometry (docs/format.md "Clearance")
   std::vector<MarkerSpec> markers;
   std::string pointer;
 };
@@ -194,6 +199,7 @@ struct UnitsSpec {
 struct ExpectSpec {
   std::optional<Scalar> grubler, mobility, redundant, idle;
   std::optional<std::string> driven;
+  std::optional<Scalar> min_clearance;  // file length units: `check` sweeps the clearances
 };
 
 /// "view": how `mechkin view` shows the file (the motion does not depend on it).
@@ -210,6 +216,7 @@ struct MechanismSpec {
   std::optional<UnitsSpec> units;
   std::vector<ParameterSpec> parameters;
   std::vector<MarkerSpec> ground_markers;  // "ground": {"markers": {...}}, global coordinates
+  std::vector<ShapeSpec> ground_shapes;    // "ground": {"shapes": [...]}, global coordinates
   std::vector<BodySpec> bodies;
   std::vector<JointSpec> joints;
   std::vector<CouplerSpec> couplers;

@@ -20,6 +20,9 @@ void SetupCheckCommand(CLI::App& app, CheckOptions* options) {
                 "Count the assembly branches at the drivers' design values (random restarts of the assembly)");
   cmd->add_option("--restarts", options->restarts, "Random starts for --branches (default 200)")
       ->check(CLI::Range(1, 1000000));
+  cmd->add_flag("--clearance", options->clearance,
+                "Sweep the analysis span: each clearance output's (else each unjointed pair of shaped bodies') "
+                "smallest clearance and where; the tightest pair first");
 }
 
 int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) {
@@ -32,6 +35,7 @@ int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) 
       const LoadResult loaded = LoadMechanismFile(f, overrides);
       r = CheckLoaded(f, loaded);
       if (options.branches && loaded.ok()) r.branches = CountBranches(*loaded.model, options.restarts);
+      if (options.clearance && loaded.ok() && !r.clearance) AddClearanceCheck(*loaded.model, &r);
     } catch (const std::exception& e) {
       // Defensive: a failure on one file must not take the others' reports with it.
       r = CheckReport{};

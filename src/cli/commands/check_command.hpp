@@ -21,6 +21,7 @@ struct CheckOptions {
   std::vector<std::string> set;  // --set NAME=VALUE
   bool branches = false;         // count the assembly branches at the design driver values
   int restarts = 200;
+  bool clearance = false;        // sweep the analysis span: the tightest pair of shaped bodies and where
 };
 
 void SetupCheckCommand(CLI::App& app, CheckOptions* options);

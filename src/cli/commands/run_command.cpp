@@ -39,6 +39,10 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
                   "At a joint's limits (\"limits\" in the file): stop (default; the crossing located) or report "
                   "(note it on stderr and go on)")
       ->check(CLI::IsMember(NamesOf<LimitAction>()));
+  cmd->add_option("--on-contact", o->on_contact,
+                  "Where the bodies of a clearance output come into contact: report (default; the first contact "
+                  "located and noted on stderr) or stop (the run stops there)")
+      ->check(CLI::IsMember(NamesOf<ContactAction>()));
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_flag("--quiet", o->quiet,
                 "No notes on stderr: redundant equations set aside, undetermined reactions, singular passages "
@@ -64,6 +68,7 @@ RunRequest RunOptions::Request() const {
   LimitAction at_limit = LimitAction::Stop;
   Parse(on_limit, &at_limit);  // CLI11 admitted only NamesOf<LimitAction>()
   r.set_limit_action(at_limit);
+  r.on_contact_stop = on_contact == "stop";  // CLI11 admitted only NamesOf<ContactAction>()
   r.keep_step_diagnostics = false;  // streamed: the table's diagnostic columns carry them
   return r;
 }

@@ -1,0 +1,192 @@
+#include "analysis/clearance.hpp"
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mechkin {
+
+struct ClearanceEvaluator::Geometry {
+  std::vector<std::shared_ptr<fcl::CollisionGeometryd>> shapes;
+  std::vector<fcl::Transform3d> in_body;  // each shape's frame in the body
+  double reach = 0;
+};
+
+namespace {
+
+// FCL's cylinders and capsules lie along their z axis: the rotation taking z to `axis`.
+fcl::Transform3d ShapeFrame(const Shape& sh) {
+  fcl::Transform3d T = fcl::Transform3d::Identity();
+  if (sh.kind == Shape::Kind::Cylinder || sh.kind == Shape::Kind::Capsule)
+    T.linear() = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), sh.axis).toRotationMatrix();
+  T.translation() = sh.center;
+  return T;
+}
+
+// The FCL shape and its reach about its own frame's origin.
+std::shared_ptr<fcl::CollisionGeometryd> MakeShape(const Shape& sh, double* reach) {
+  switch (sh.kind) {
+    case Shape::Kind::Box:
+      *reach = 0.5 * sh.size.norm();
+      return std::make_shared<fcl::Boxd>(sh.size.x(), sh.size.y(), sh.size.z());
+    case Shape::Kind::Sphere:
+      *reach = sh.radius;
+      return std::make_shared<fcl::Sphered>(sh.radius);
+    case Shape::Kind::Cylinder:
+      *reach = std::hypot(sh.radius, 0.5 * sh.length);
+      return std::make_shared<fcl::Cylinderd>(sh.radius, sh.length);
+    case Shape::Kind::Capsule:
+      *reach = sh.radius + 0.5 * sh.length;
+      return std::make_shared<fcl::Capsuled>(sh.radius, sh.length);
+    case Shape::Kind::Convex:
+      break;
+  }
+  *reach = 0;
+  for (const Vec3& p : sh.points) *reach = std::max(*reach, p.norm());
+  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(sh.points.begin(), sh.points.end());
+  auto faces = std::make_shared<std::vector<int>>(sh.faces);
+  return std::make_shared<fcl::Convexd>(vertices, sh.num_faces, faces);
+}
+
+fcl::Transform3d BodyPose(const BodyKinematics& k) {
+  fcl::Transform3d T = fcl::Transform3d::Identity();
+  T.linear() = k.A;
+  T.translation() = k.r[0];
+  return T;
+}
+
+// The velocity of the material point of body k at the global point x (order ≥ 1 solved).
+Vec3 MaterialVelocity(const BodyKinematics& k, const Vec3& x) {
+  return k.PointDerivative(k.A.transpose() * (x - k.r[0]), 1);
+}
+
+}  // namespace
+
+std::vector<const Shape*> ClearanceShapes(const Model& model, BodyIndex body) {
+  std::vector<const Shape*> out;
+  if (body == kGround) {
+    for (const Shape& s : model.ground_shapes) out.push_back(&s);
+    return out;
+  }
+  const Body& b = model.bodies[body];
+  if (b.shape) out.push_back(&*b.shape);
+  for (const Shape& s : b.shapes) out.push_back(&s);
+  return out;
+}
+
+std::vector<ClearancePair> ClearanceOutputPairs(const Model& model) {
+  std::vector<ClearancePair> out;
+  for (size_t o = 0; o < model.outputs.size(); ++o)
+    if (model.outputs[o].kind == OutputKind::Clearance)
+      out.push_back({model.outputs[o].body1, model.outputs[o].body2, static_cast<int>(o)});
+  return out;
+}
+
+std::vector<ClearancePair> ShapedBodyPairs(const Model& model) {
+  std::vector<BodyIndex> shaped;
+  if (!model.ground_shapes.empty()) shaped.push_back(kGround);
+  for (int b = 0; b < model.num_bodies(); ++b)
+    if (!ClearanceShapes(model, b).empty()) shaped.push_back(b);
+  auto jointed = [&](BodyIndex a, BodyIndex b) {
+    return std::any_of(model.joints.begin(), model.joints.end(), [&](const Joint& j) {
+      return (j.body1 == a && j.body2 == b) || (j.body1 == b && j.body2 == a);
+    });
+  };
+  std::vector<ClearancePair> out;
+  for (size_t i = 0; i < shaped.size(); ++i)
+    for (size_t k = i + 1; k < shaped.size(); ++k)
+      if (!jointed(shaped[i], shaped[k])) out.push_back({shaped[i], shaped[k], -1});
+  return out;
+}
+
+ClearanceEvaluator::ClearanceEvaluator(const Model& model, std::vector<ClearancePair> pairs)
+    : pairs_(std::move(pairs)) {
+  // GJK stops when a step gains less than this: far below the 1e-9 s a contact is
+  // located to at any speed the mechanism's size makes plausible.
+  tolerance_ = 1e-12 * model.characteristic_length;
+  for (int b = 0; b <= model.num_bodies(); ++b) {
+    auto g = std::make_unique<Geometry>();
+    for (const Shape* sh : ClearanceShapes(model, b == model.num_bodies() ? kGround : b)) {
+      double reach = 0;
+      g->shapes.push_back(MakeShape(*sh, &reach));
+      g->in_body.push_back(ShapeFrame(*sh));
+      g->reach = std::max(g->reach, sh->center.norm() + reach);
+    }
+    bodies_.push_back(std::move(g));
+  }
+}
+
+ClearanceEvaluator::~ClearanceEvaluator() = default;
+
+const ClearanceEvaluator::Geometry& ClearanceEvaluator::Of(BodyIndex body) const {
+  return *bodies_[body == kGround ? bodies_.size() - 1 : static_cast<size_t>(body)];
+}
+
+double ClearanceEvaluator::Reach(BodyIndex body) const { return Of(body).reach; }
+
+namespace {
+
+// One shape pair: GJK's distance and closest points (global) while apart; in
+// contact, minus the penetration depth from FCL's contact (analytic for spheres
+// and boxes, MPR otherwise), its witness points ∓ half the depth along the normal
+// (from shape 1 to shape 2). FCL's signed distance (EPA) is not used: it trips an
+// assertion of Debian's build on penetrating spheres.
+double ShapePairDistance(const fcl::CollisionGeometryd* a, const fcl::Transform3d& Ta,
+                         const fcl::CollisionGeometryd* b, const fcl::Transform3d& Tb, double tolerance, Vec3* pa,
+                         Vec3* pb) {
+  fcl::DistanceRequestd request(true, false, 0.0, 0.0, tolerance);
+  fcl::DistanceResultd result;
+  const double d = fcl::distance(a, Ta, b, Tb, request, result);
+  *pa = result.nearest_points[0];
+  *pb = result.nearest_points[1];
+  if (d > 0) return d;
+  fcl::CollisionRequestd touching(1, true);
+  fcl::CollisionResultd contact;
+  if (fcl::collide(a, Ta, b, Tb, touching, contact) == 0) return 0;
+  const fcl::Contactd& c = contact.getContact(0);
+  *pa = c.pos + 0.5 * c.penetration_depth * c.normal;
+  *pb = c.pos - 0.5 * c.penetration_depth * c.normal;
+  return -c.penetration_depth;
+}
+
+}  // namespace
+
+// The smallest signed distance over the shape pairs, then d' = n·(v₂ − v₁) with n
+// the unit vector from the closest point on body1 to the one on body2, reversed in
+// penetration (§13).
+ClearanceValue ClearanceEvaluator::Evaluate(const SystemState& s, int pair, bool with_rate) const {
+  const ClearancePair& p = pairs_[pair];
+  const BodyKinematics &k1 = s.Kin(p.body1), &k2 = s.Kin(p.body2);
+  const Geometry &g1 = Of(p.body1), &g2 = Of(p.body2);
+  const fcl::Transform3d T1 = BodyPose(k1), T2 = BodyPose(k2);
+  ClearanceValue best;
+  best.distance = std::numeric_limits<double>::infinity();
+  Vec3 pa, pb;
+  for (size_t a = 0; a < g1.shapes.size(); ++a)
+    for (size_t b = 0; b < g2.shapes.size(); ++b) {
+      const double d = ShapePairDistance(g1.shapes[a].get(), T1 * g1.in_body[a], g2.shapes[b].get(),
+                                         T2 * g2.in_body[b], tolerance_, &pa, &pb);
+      if (!(d < best.distance)) continue;
+      best.distance = d;
+      best.point1 = pa;
+      best.point2 = pb;
+    }
+  best.rate = std::nan("");
+  const Vec3 gap = best.point2 - best.point1;
+  if (with_rate && gap.norm() > 0) {
+    const Vec3 n = (best.distance < 0 ? -gap : gap).normalized();
+    best.rate = n.dot(MaterialVelocity(k2, best.point2) - MaterialVelocity(k1, best.point1));
+  }
+  return best;
+}
+
+}  // namespace mechkin
