@@ -17,7 +17,8 @@ import re
 import sys
 import tokenize
 
-LAYOUT = {"src/analysis/motion.cpp"}
+# The layout: motion.cpp and the clearance columns it delegates to (MotionLayout::AddClearance).
+LAYOUT = {"src/analysis/motion.cpp", "src/analysis/clearance_columns.cpp"}
 FRAGMENT = re.compile(r"^(/d\(|\)|_t+|\.(effort\d*|power|[fm][xyzfgh])(_t+)?)$")
 FORMAT = re.compile(r"(%s|\{\w*\})/d\((%s|\{\w*\})\)|(%s|\{\w*\})\.(effort|power)")
 CPP_STRING = re.compile(r'"((?:[^"\\\n]|\\.)*)"')
