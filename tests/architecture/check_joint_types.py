@@ -14,6 +14,8 @@ import os
 import re
 import sys
 
+from planted import check_main
+
 NAMES = ["revolute", "prismatic", "screw", "cylindrical", "universal", "spherical", "planar"]
 SOURCE_ENDINGS = (".cpp", ".hpp", ".h", ".cc", ".in")
 PATTERNS = [
@@ -47,15 +49,7 @@ def offences(root):
 
 
 def main():
-    root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    if not os.path.isdir(os.path.join(root, "src", "joints")):
-        print("no src/joints folder under %s" % root)
-        return 2
-    found = offences(root)
-    for line in found:
-        print(line)
-    print("%d joint type offence(s) in %s/src" % (len(found), root))
-    return 1 if found else 0
+    return check_main(offences, "joint type", "src/joints")
 
 
 if __name__ == "__main__":

@@ -13,6 +13,8 @@ import os
 import re
 import sys
 
+from planted import check_main
+
 LAYERS = ["math", "joints", "spec", "model", "constraints", "kinematics", "mobility", "analysis", "io", "cli"]
 JSON_LAYERS = {"spec", "io"}
 # Files allowed a JSON include outside spec and io: none (the loader became src/spec,
@@ -52,15 +54,7 @@ def offences(root):
 
 
 def main():
-    root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    if not os.path.isdir(os.path.join(root, "src")):
-        print("no src/ folder under %s" % root)
-        return 2
-    found = offences(root)
-    for line in found:
-        print(line)
-    print("%d layering offence(s) in %s/src" % (len(found), root))
-    return 1 if found else 0
+    return check_main(offences, "layering", "src")
 
 
 if __name__ == "__main__":
