@@ -95,6 +95,7 @@ struct EnumNames<Quantity> {
       {Quantity::GimbalLock, "gimbal_lock"},
       {Quantity::Clearance, "clearance"},
       {Quantity::ClearancePoint, "clearance_point"},
+      {Quantity::Expression, "expression"},
       {Quantity::DriverEffort, "driver_effort"},
       {Quantity::DriverPower, "driver_power"},
       {Quantity::JointForce, "joint_force"},

@@ -195,6 +195,8 @@ void MotionLayout::AddOutput(const Model& model, int o) {
     AddOrientation(out, o, A);
   } else if (out.kind == OutputKind::Clearance) {
     AddClearance(out, o, L);
+  } else if (out.kind == OutputKind::Expression) {
+    AddSeries(Quantity::Expression, out.name, o, out.name, -1, "", 0);
   } else {
     AddJointCoordinates(model.joints[out.joint].type->coordinates, out, o, L, A);
   }
@@ -349,15 +351,23 @@ int MotionLayout::PowerOf(const std::string& driver, int order) const {
 }
 
 std::vector<int> MotionLayout::NeededBodies(const Model& model) const {
-  std::vector<char> need(model.num_bodies(), 0);
+  std::vector<char> need(model.num_bodies(), 0), seen(model.outputs.size(), 0);
+  std::vector<int> pending;  // outputs whose bodies are needed: the selected ones and what they read
   for (const Item& it : items_) {
-    if (it.is_body) { need[it.index] = 1; continue; }
-    const Output& o = model.outputs[it.index];
-    std::vector<BodyIndex> uses = {o.body1, o.body2, o.frame};
-    for (int x : {o.ratio_of, o.ratio_input_output})
-      if (x >= 0) uses.insert(uses.end(), {model.outputs[x].body1, model.outputs[x].body2});
-    for (BodyIndex b : uses)
+    if (it.is_body) need[it.index] = 1;
+    else pending.push_back(it.index);
+  }
+  while (!pending.empty()) {  // each output once: linear in the outputs and their inputs
+    const int x = pending.back();
+    pending.pop_back();
+    if (seen[x]) continue;
+    seen[x] = 1;
+    const Output& o = model.outputs[x];
+    for (BodyIndex b : {o.body1, o.body2, o.frame})
       if (b != kGround) need[b] = 1;
+    for (int y : {o.ratio_of, o.ratio_input_output})
+      if (y >= 0) pending.push_back(y);
+    for (const ExpressionInput& in : o.inputs) pending.push_back(in.output);
   }
   std::vector<int> bodies;
   for (int b = 0; b < model.num_bodies(); ++b)
@@ -378,6 +388,7 @@ RowEvaluator::RowEvaluator(const Model& model, const MotionLayout& layout)
       if (model.outputs[o].kind == OutputKind::JointCoordinate && model.drivers[d].kind == DriverKind::JointRotation &&
           model.drivers[d].joint == model.outputs[o].joint)
         angle_driver_[o] = static_cast<int>(d);
+  PrepareExpressions();
 }
 
 // A joint angle continuous from the design pose over any number of turns
@@ -397,6 +408,8 @@ double RowEvaluator::JointAngle(const SystemState& s, int o, double raw_sin, dou
 // number of values than its segment holds is a defect of the layout, caught here
 // rather than shifting every later column (tests run every layout through this).
 void RowEvaluator::Evaluate(const SystemState& s, const StepDiagnostics& d, double* row) {
+  if (file_units_) file_units_->Evaluate(s, d, file_row_.data());
+  current_row_ = row;
   for (const MotionLayout::Segment& g : layout_.segments()) {
     double* const at = row + g.first;
     if (SegmentValues(g, s, d, at) != at + g.count)
@@ -435,15 +448,19 @@ double* RowEvaluator::DiagnosticValues(const StepDiagnostics& d, double* out) co
 void RowEvaluator::Follow(const SystemState& s) {
   follow_row_.resize(layout_.size());
   double* out = follow_row_.data();
+  following_ = true;
   for (const auto& it : layout_.items())
     if (!it.is_body) out = OutputValues(s, it.index, out);
+  following_ = false;
   std::fill(angle_rate_.begin(), angle_rate_.end(), 0.0);
   for (auto& r : orientation_rate_) r = {0, 0, 0};
   last_t_ = s.t;
   first_row_ = false;
+  if (file_units_) file_units_->Follow(s);
 }
 
 void RowEvaluator::ContinueFrom(const RowEvaluator& base) {
+  if (file_units_ && base.file_units_) file_units_->ContinueFrom(*base.file_units_);
   angle_ref_ = base.angle_ref_;
   orientation_ref_ = base.orientation_ref_;
   std::fill(angle_rate_.begin(), angle_rate_.end(), 0.0);
@@ -522,6 +539,7 @@ double* RowEvaluator::OutputValues(const SystemState& s, int o, double* out) {
   if (op.kind == OutputKind::VelocityRatio) return VelocityRatioValues(s, o, out);
   if (op.kind == OutputKind::Orientation) return OrientationValues(s, o, out);
   if (op.kind == OutputKind::Clearance) return ClearanceValues(s, o, out);
+  if (op.kind == OutputKind::Expression) return ExpressionValues(s, o, out);
   if (op.kind == OutputKind::Distance) {
     const Jet dist = DistanceJet(s, op, order);
     for (int k = 0; k <= order; ++k) *out++ = dist.Derivative(k) * len;
@@ -832,6 +850,78 @@ Motion RunMotion(const Model& model, const AnalysisOptions& options, const Table
   RunPlan plan{table, options};
   DecideComputation(model, &plan);
   return RunPlanned(model, plan);
+}
+
+}  // namespace mechkin
+
+namespace mechkin {
+
+// Where each expression input's order-k value sits in the row of the layout the
+// inputs are read from, found once by the column descriptors.
+void RowEvaluator::PrepareExpressions() {
+  bool any = false;
+  for (const Output& o : model_.outputs) any = any || o.kind == OutputKind::Expression;
+  if (!any) return;
+  const TableOptions& mine = layout_.options();
+  if (mine.si || !mine.all_outputs) {
+    TableOptions file;
+    file.order = mine.order;
+    file.all_bodies = false;
+    file_layout_ = std::make_unique<MotionLayout>(model_, file);
+    file_units_ = std::make_unique<RowEvaluator>(model_, *file_layout_);
+    file_row_.resize(file_layout_->size());
+  }
+  const MotionLayout& src = file_layout_ ? *file_layout_ : layout_;
+  std::vector<const MotionLayout::Segment*> block(model_.outputs.size(), nullptr);
+  for (const auto& g : src.segments())
+    if (g.kind == MotionLayout::Segment::Kind::Output) block[g.index] = &g;
+  file_block_.assign(model_.outputs.size(), -1);
+  for (size_t o = 0; o < block.size(); ++o) file_block_[o] = block[o] ? block[o]->first : -1;
+  expression_offsets_.assign(model_.outputs.size(), {});
+  for (size_t o = 0; o < model_.outputs.size(); ++o) {
+    for (const ExpressionInput& in : model_.outputs[o].inputs) {
+      std::array<int, kMaxOrder + 1> at;
+      at.fill(-1);
+      const MotionLayout::Segment& g = *block[in.output];
+      const ColumnDescriptor& head = src.columns()[g.first];
+      const int component = model_.outputs[in.output].kind == OutputKind::Point ? in.component : head.component;
+      for (int c = g.first; c < g.first + g.count; ++c) {
+        const ColumnDescriptor& d = src.columns()[c];
+        if (d.quantity == head.quantity && d.component == component && d.order <= kMaxOrder) at[d.order] = c;
+      }
+      expression_offsets_[o].push_back(at);
+    }
+  }
+}
+
+// The expression's jet from its inputs' jets (file units, docs/format.md "Expression
+// outputs"): exact time derivatives by Taylor arithmetic up to the lowest order every
+// input has; higher orders, and a value outside a function's domain, read NaN.
+double* RowEvaluator::ExpressionValues(const SystemState& s, int o, double* out) {
+  static constexpr double kFact[] = {1, 1, 2, 6, 24};
+  const int order = layout_.options().order;
+  if (following_) return std::fill_n(out, order + 1, std::nan(""));
+  if (file_units_) return std::copy_n(file_row_.data() + file_block_[o], order + 1, out);
+  const Output& op = model_.outputs[o];
+  expression_jets_.resize(std::max(expression_jets_.size(), op.inputs.size()));
+  int known = order;
+  for (size_t i = 0; i < op.inputs.size(); ++i) {
+    Jet& j = expression_jets_[i];
+    j = Jet{};
+    for (int k = 0; k <= order; ++k) {
+      const int at = expression_offsets_[o][i][k];
+      if (at < 0) known = std::min(known, k - 1);
+      else j.c[k] = current_row_[at] / kFact[k];
+    }
+  }
+  Jet v;
+  try {
+    v = op.expression->EvalWithSlotJets(s.t, expression_jets_);
+  } catch (const JetDomainError&) {
+    known = -1;
+  }
+  for (int k = 0; k <= order; ++k) *out++ = k <= known ? v.Derivative(k) : std::nan("");
+  return out;
 }
 
 }  // namespace mechkin

@@ -37,6 +37,7 @@ enum class Quantity {
   GimbalLock,         // orientation output: 1 where the sequence's first and third angles are undefined
   Clearance,          // clearance output: the bodies' minimum distance, order 0..1 (analysis/clearance.hpp)
   ClearancePoint,     // its closest points, global: component 0..2 on body1, 3..5 on body2
+  Expression,         // expression output: computed from earlier outputs (file units), order 0..order
   DriverEffort,       // torque or force a driver applies (".effort"), order 0..1
   DriverPower,        // ".power"
   JointForce,         // reaction force on body2 by body1, global x/y/z (".fx")
@@ -183,6 +184,8 @@ class RowEvaluator {
   double* UniversalValues(const SystemState& s, int o, double* out);
   double* PlanarSlides(const SystemState& s, int o, double* out) const;
   double* ClearanceValues(const SystemState& s, int o, double* out);
+  double* ExpressionValues(const SystemState& s, int o, double* out);
+  void PrepareExpressions();
   Jet ScalarOutputJet(const SystemState& s, int o) const;
 
   const Model& model_;
@@ -199,6 +202,20 @@ class RowEvaluator {
   // Clearance outputs: their pairs' evaluator (made on the first row) and, per output, its pair.
   std::shared_ptr<ClearanceEvaluator> clearance_;
   std::vector<int> clearance_pair_;
+  // Expression outputs read earlier outputs in the file's units, whatever this table's
+  // units and selection. A layout with every output in file units reads them from the
+  // row it is filling (each input computed once, earlier in the row); any other has an
+  // evaluator over such a layout, whose row it fills first and copies the expressions
+  // from. Per input of each expression output: the row column of its order-k value
+  // (−1: no such order).
+  std::unique_ptr<MotionLayout> file_layout_;
+  std::unique_ptr<RowEvaluator> file_units_;
+  std::vector<double> file_row_;
+  std::vector<int> file_block_;  // per output: its first column in file_row_
+  std::vector<std::vector<std::array<int, kMaxOrder + 1>>> expression_offsets_;
+  std::vector<Jet> expression_jets_;
+  const double* current_row_ = nullptr;  // the row Evaluate is filling
+  bool following_ = false;               // in Follow: no row, expressions not computed
 };
 
 struct MotionStop {

@@ -106,6 +106,7 @@ bool Compiler::CompileOutputGeometry(const OutputSpec& o, Output* out) {
   if (type == "joint") return out->kind = OutputKind::JointCoordinate, CompileJointOutput(o, out);
   if (type == "angle") return out->kind = OutputKind::Angle, CompileAngleOutput(o, out);
   if (type == "clearance") return out->kind = OutputKind::Clearance, CompileClearanceOutput(o, out);
+  if (type == "expression") return out->kind = OutputKind::Expression, CompileExpressionOutput(o, out);
   out->kind = OutputKind::Distance;
   auto b1 = BodyRef(o.body1, "body1", ptr);
   auto b2 = BodyRef(o.body2, "body2", ptr);
@@ -242,6 +243,104 @@ bool Compiler::CompileAngleOutput(const OutputSpec& o, Output* out) {
       }
     out->about = *a;
     out->signed_about = true;
+  }
+  return true;
+}
+
+}  // namespace mechkin
+
+namespace mechkin {
+
+namespace {
+
+// Outputs an expression can read by their name alone: one coordinate each.
+bool SingleValued(const Model& model, const Output& o) {
+  switch (o.kind) {
+    case OutputKind::Distance:
+    case OutputKind::Angle:
+    case OutputKind::Clearance:
+    case OutputKind::Expression:
+    case OutputKind::VelocityRatio:
+      return true;
+    case OutputKind::JointCoordinate: {
+      const JointCoordinates c = model.joints[o.joint].type->coordinates;
+      return c == JointCoordinates::Angle || c == JointCoordinates::Slide;
+    }
+    default:
+      return false;
+  }
+}
+
+int OutputIndex(const Model& model, const std::string& name) {
+  for (size_t k = 0; k < model.outputs.size(); ++k)
+    if (model.outputs[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
+}  // namespace
+
+// A name of an expression output: an earlier single-valued output, or "P.x" (.y, .z)
+// of an earlier point output. Returns false (reported) when it is neither.
+bool Compiler::ResolveExpressionName(const std::string& name, const std::string& ptr, ExpressionInput* in) {
+  in->output = OutputIndex(model_, name);
+  if (in->output >= 0 && SingleValued(model_, model_.outputs[in->output])) return true;
+  if (in->output >= 0) {
+    const bool point = model_.outputs[in->output].kind == OutputKind::Point;
+    Error(ptr, "output '" + name + "' has several coordinates",
+          point ? "name one of them: " + name + ".x, " + name + ".y or " + name + ".z"
+                : "expressions read single-valued outputs (joint angles or slides, distances, angles, clearances, "
+                  "expressions) and point coordinates (P.x)");
+    return false;
+  }
+  const size_t dot = name.find('.');
+  if (dot != std::string::npos) {
+    const int base = OutputIndex(model_, name.substr(0, dot));
+    const std::string comp = name.substr(dot + 1);
+    if (base >= 0 && model_.outputs[base].kind == OutputKind::Point && (comp == "x" || comp == "y" || comp == "z")) {
+      *in = {base, comp == "x" ? 0 : comp == "y" ? 1 : 2};
+      return true;
+    }
+  }
+  UnknownExpressionName(name, ptr);
+  return false;
+}
+
+void Compiler::UnknownExpressionName(const std::string& name, const std::string& ptr) {
+  std::vector<std::string> known;
+  for (const Output& o : model_.outputs) known.push_back(o.name);
+  for (const auto& kv : symbols_) known.push_back(kv.first);
+  for (const OutputSpec& later : spec_.outputs)
+    if (later.name && *later.name == name.substr(0, name.find('.')) && OutputIndex(model_, *later.name) < 0) {
+      Error(ptr, "output '" + *later.name + "' comes after this expression (or failed to compile)",
+            "list the outputs an expression reads before it");
+      return;
+    }
+  const std::string guess = DidYouMean(name, known);
+  Error(ptr, "unknown name '" + name + "' in the expression",
+        guess.empty() ? "expressions read t, pi, the parameters and earlier outputs (a point's coordinates as P.x)"
+                      : "did you mean '" + guess + "'?");
+}
+
+// "value": parsed once, the parameters as constants (file units), each other name a
+// slot filled per row with that output's value and time derivatives (its jet).
+bool Compiler::CompileExpressionOutput(const OutputSpec& o, Output* out) {
+  if (!o.value) return false;
+  const std::string ptr = o.pointer + "/value";
+  ExpressionSlots slots;
+  for (const std::string& name : Expression::DottedNames(*o.value)) {
+    if (slots.count(name) || symbols_.count(name)) continue;
+    ExpressionInput in;
+    if (!ResolveExpressionName(name, ptr, &in)) return false;
+    slots[name] = static_cast<int>(out->inputs.size());
+    out->inputs.push_back(in);
+  }
+  try {
+    out->expression = std::make_shared<Expression>(Expression::ParseOverColumns(*o.value, symbols_, slots));
+  } catch (const ExpressionError& err) {
+    Error(ptr, std::string("bad expression at column ") + std::to_string(err.column) + ": " + err.what(),
+          "expressions use numbers, + - * / ^, parentheses, t, pi, sin cos tan asin acos atan atan2 exp log sqrt, "
+          "the parameters and earlier outputs");
+    return false;
   }
   return true;
 }

@@ -131,6 +131,9 @@ class Compiler {
   std::optional<TimeFunction> CompileTable(const FunctionSpec& f, double scale);
   void CompileOutput(const OutputSpec& o);
   bool CheckOutputName(const std::string& name, const std::string& ptr);
+  bool CompileExpressionOutput(const OutputSpec& o, Output* out);
+  bool ResolveExpressionName(const std::string& name, const std::string& ptr, ExpressionInput* in);
+  void UnknownExpressionName(const std::string& name, const std::string& ptr);
   bool CompileOutputGeometry(const OutputSpec& o, Output* out);
   bool CompileJointOutput(const OutputSpec& o, Output* out);
   bool CompileVelocityRatio(const OutputSpec& o, Output* out);

@@ -17,6 +17,18 @@ namespace {
 bool IsDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
 bool IsNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }
 
+// End of the name starting at `start`; with `dotted`, one ".component" (a letter
+// after the dot) belongs to it: "tip.x" names an output's coordinate.
+size_t NameEnd(const std::string& s, size_t start, bool dotted) {
+  size_t pos = start;
+  while (pos < s.size() && IsNameChar(s[pos])) ++pos;
+  if (dotted && pos + 1 < s.size() && s[pos] == '.' && std::isalpha(static_cast<unsigned char>(s[pos + 1]))) {
+    ++pos;
+    while (pos < s.size() && IsNameChar(s[pos])) ++pos;
+  }
+  return pos;
+}
+
 // End of the number token starting at `start`: digits and dots, then an exponent
 // (e, an optional sign, digits) when one follows.
 size_t NumberEnd(const std::string& s, size_t start) {
@@ -38,8 +50,8 @@ size_t NumberEnd(const std::string& s, size_t start) {
 class ExpressionParser {
  public:
   ExpressionParser(Expression* e, const ExpressionSymbols* symbols, bool allow_time,
-                   const ExpressionSlots* slots = nullptr)
-      : e_(e), s_(e->text_), symbols_(symbols), slots_(slots), allow_time_(allow_time) {}
+                   const ExpressionSlots* slots = nullptr, bool dotted_names = false)
+      : e_(e), s_(e->text_), symbols_(symbols), slots_(slots), allow_time_(allow_time), dotted_(dotted_names) {}
 
   static const std::map<std::string, Expression::Op>& Functions() {
     static const std::map<std::string, Op> kFunctions = {
@@ -157,7 +169,7 @@ class ExpressionParser {
   }
   int ParseName(int depth) {
     const size_t start = pos_;
-    while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) ++pos_;
+    pos_ = NameEnd(s_, pos_, dotted_);
     const std::string name = s_.substr(start, pos_ - start);
     const int col = static_cast<int>(start) + 1;
     if (name == "t") {
@@ -196,6 +208,7 @@ class ExpressionParser {
   const ExpressionSymbols* symbols_;
   const ExpressionSlots* slots_;
   bool allow_time_;
+  bool dotted_;  // names may have one ".component" (an output's coordinate: "tip.x")
   size_t pos_ = 0;
 };
 
@@ -238,6 +251,32 @@ Expression Expression::ParseWithSlots(const std::string& text, const ExpressionS
   e.text_ = text;
   ExpressionParser(&e, nullptr, allow_time, &slots).Run();
   return e;
+}
+
+Expression Expression::ParseOverColumns(const std::string& text, const ExpressionSymbols& symbols,
+                                        const ExpressionSlots& slots) {
+  if (text.size() > kMaxLength) return Parse(text, nullptr, true);  // throws the length error
+  Expression e;
+  e.text_ = text;
+  ExpressionParser(&e, &symbols, true, &slots, true).Run();
+  return e;
+}
+
+std::vector<std::string> Expression::DottedNames(const std::string& text) {
+  std::vector<std::string> names;
+  for (size_t i = 0; i < text.size();) {
+    if (IsDigit(text[i]) || text[i] == '.') {
+      i = NumberEnd(text, i);
+    } else if (IsNameChar(text[i])) {
+      const size_t end = NameEnd(text, i, true);
+      std::string name = text.substr(i, end - i);
+      if (!IsReservedName(name)) names.push_back(std::move(name));
+      i = end;
+    } else {
+      ++i;
+    }
+  }
+  return names;
 }
 
 std::vector<int> Expression::SlotsUsed() const {
@@ -311,6 +350,15 @@ Jet Expression::EvalWithSlots(double t, const std::vector<double>& slot_values) 
   const Jet time = Jet::Variable(t);
   for (size_t i = 0; i < nodes_.size(); ++i)
     value[i] = nodes_[i].op == Op::Slot ? Jet::Constant(slot_values[nodes_[i].a]) : EvalNode(nodes_[i], time, value);
+  return value[root_];
+}
+
+Jet Expression::EvalWithSlotJets(double t, const std::vector<Jet>& slot_jets) const {
+  thread_local std::vector<Jet> value;
+  value.resize(nodes_.size());
+  const Jet time = Jet::Variable(t);
+  for (size_t i = 0; i < nodes_.size(); ++i)
+    value[i] = nodes_[i].op == Op::Slot ? slot_jets[nodes_[i].a] : EvalNode(nodes_[i], time, value);
   return value[root_];
 }
 

@@ -147,7 +147,14 @@ struct Driver {
   bool general_angle = false;
 };
 
-enum class OutputKind { Point, JointCoordinate, Distance, Angle, VelocityRatio, Orientation, Clearance };
+enum class OutputKind { Point, JointCoordinate, Distance, Angle, VelocityRatio, Orientation, Clearance, Expression };
+
+/// One column an expression output reads: an earlier output (`component` 0..2 of a
+/// point output, 0 for a single-valued one).
+struct ExpressionInput {
+  int output = -1;
+  int component = 0;
+};
 
 struct Output {
   std::string name;
@@ -166,6 +173,10 @@ struct Output {
   // Orientation (and a spherical joint's output): body2 relative to body1; "XYZ" …
   // "ZYX", "ZXZ" … (intrinsic rotation sequences), "axis-angle" or "euler-parameters".
   std::string sequence;
+  // Expression: the text parsed with the parameters as constants (file units) and
+  // slot k reading inputs[k] in the file's units (docs/format.md "Expression outputs").
+  std::shared_ptr<const Expression> expression;
+  std::vector<ExpressionInput> inputs;
 };
 
 /// Rows a run computes at most (steps + 1): the file's /analysis/steps and every

@@ -46,6 +46,16 @@ class Expression {
   /// Value and derivatives at t with slot k valued slot_values[k] (the same numbers
   /// as Parse with those values substituted, then Eval).
   Jet EvalWithSlots(double t, const std::vector<double>& slot_values) const;
+  /// An output's "expression" (docs/format.md "Expression outputs"): `symbols` (the
+  /// parameters) become constants, `slots` are the columns it reads, whose names may
+  /// carry one ".component" ("tip.x"). Throws as Parse.
+  static Expression ParseOverColumns(const std::string& text, const ExpressionSymbols& symbols,
+                                     const ExpressionSlots& slots);
+  /// Value and derivatives at t with slot k the jet slot_jets[k] (a column's value and
+  /// time derivatives): the chain rule to the 4th order. Throws JetDomainError.
+  Jet EvalWithSlotJets(double t, const std::vector<Jet>& slot_jets) const;
+  /// Names as ParseOverColumns reads them ("tip.x" one name), reserved ones left out.
+  static std::vector<std::string> DottedNames(const std::string& text);
   /// The slots the expression uses, each once, in order of first use.
   std::vector<int> SlotsUsed() const;
   /// Identifiers reserved by the grammar (t, pi and the function names).

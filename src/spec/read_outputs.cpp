@@ -28,15 +28,17 @@ bool OutputKeys(JsonReader& rd, const std::optional<std::string>& type, const st
   if (type && *type == "angle")
     return add({"body1", "vector1", "body2", "vector2", "about"}, {"body1", "vector1", "body2", "vector2"});
   if (type && *type == "clearance") return add({"body1", "body2"}, {"body1", "body2"});
+  if (type && *type == "expression") return add({"value"}, {"value"});
   if (type) {
-    const std::vector<std::string> types = {"point",          "joint",       "distance", "angle",
-                                            "velocity_ratio", "orientation", "clearance"};
+    const std::vector<std::string> types = {"point",       "joint",     "distance",  "angle", "velocity_ratio",
+                                            "orientation", "clearance", "expression"};
     const std::string g = DidYouMean(*type, types);
     rd.Error(ptr + "/type", "unknown output type '" + Shorten(*type) + "'",
              (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(types));
   }
   allowed->insert(allowed->end(), {"body", "point", "joint", "body1", "point1", "body2", "point2", "vector1",
-                                   "vector2", "about", "frame", "output", "input", "relative_to", "sequence"});
+                                   "vector2", "about", "frame", "output", "input", "relative_to", "sequence",
+                                   "value"});
   return false;
 }
 
@@ -162,7 +164,7 @@ void ReadOutput(JsonReader& rd, const json& o, const std::string& ptr, Mechanism
   const StringField strings[] = {{"body", &out.body}, {"frame", &out.frame}, {"joint", &out.joint},
                             {"body1", &out.body1}, {"body2", &out.body2}, {"output", &out.output},
                             {"input", &out.input}, {"relative_to", &out.relative_to}, {"sequence", &out.sequence},
-                            {"marker", &out.marker}};
+                            {"marker", &out.marker}, {"value", &out.value}};
   for (auto [key, field] : strings)
     if (has(key)) *field = rd.String(o, key, ptr);
   const VectorField vectors[] = {{"point", &out.point}, {"point1", &out.point1}, {"point2", &out.point2},

@@ -159,6 +159,7 @@ struct DriverSpec {
 struct OutputSpec {
   std::optional<std::string> name, type;
   std::optional<std::string> body, frame, joint, body1, body2, output, input, relative_to, sequence, marker;
+  std::optional<std::string> value;  // "expression": the text over earlier outputs, parameters and t
   std::optional<Vector3Spec> point, point1, point2, vector1, vector2, about;
   std::string pointer;
 };
