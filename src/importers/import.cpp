@@ -1,0 +1,121 @@
+// The layer's entry points: detecting a foreign file and importing it.
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+#include "importers/readers.hpp"
+
+namespace mechkin::importers {
+
+std::string FormatName(ForeignFormat format) {
+  switch (format) {
+    case ForeignFormat::Urdf: return "URDF";
+    case ForeignFormat::Mjcf: return "MJCF";
+    case ForeignFormat::Sdf: return "SDFormat";
+    case ForeignFormat::FreeCad: return "FreeCAD";
+    case ForeignFormat::None: break;
+  }
+  return "";
+}
+
+namespace {
+
+std::string Lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::string Extension(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  return Lower(path.substr(dot + 1));
+}
+
+// The name of the first element of an XML text (after the declaration, comments, doctype).
+std::string RootName(const std::string& head) {
+  size_t k = 0;
+  while ((k = head.find('<', k)) != std::string::npos) {
+    if (head.compare(k, 4, "<!--") == 0) {
+      k = head.find("-->", k);
+      if (k == std::string::npos) return "";
+      continue;
+    }
+    if (head.compare(k, 2, "<?") == 0 || head.compare(k, 2, "<!") == 0) {
+      ++k;
+      continue;
+    }
+    size_t e = k + 1;
+    while (e < head.size() && (std::isalnum(static_cast<unsigned char>(head[e])) || head[e] == '_' || head[e] == ':'))
+      ++e;
+    return head.substr(k + 1, e - k - 1);
+  }
+  return "";
+}
+
+}  // namespace
+
+ForeignFormat DetectForeignFormat(const std::string& path, const std::string& head) {
+  const std::string ext = Extension(path);
+  if (ext == "fcstd" || head.compare(0, 4, "PK\x03\x04") == 0) return ForeignFormat::FreeCad;
+  const size_t first = head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+  const bool xml = first != std::string::npos && head[first] == '<';
+  if (!xml && ext != "urdf" && ext != "sdf" && ext != "mjcf" && ext != "world" && ext != "xml")
+    return ForeignFormat::None;
+  const std::string root = RootName(head);
+  if (root == "robot") return ForeignFormat::Urdf;
+  if (root == "mujoco") return ForeignFormat::Mjcf;
+  if (root == "sdf") return ForeignFormat::Sdf;
+  if (ext == "urdf") return ForeignFormat::Urdf;
+  if (ext == "sdf" || ext == "world") return ForeignFormat::Sdf;
+  if (ext == "mjcf" || ext == "xml" || xml) return ForeignFormat::Mjcf;
+  return ForeignFormat::None;
+}
+
+ImportResult ImportText(const std::string& text, ForeignFormat format, const std::string& display_name,
+                        const ImportOptions& options) {
+  ImportResult result;
+  result.format = format;
+  Graph graph(display_name, &result);
+  if (format == ForeignFormat::FreeCad || format == ForeignFormat::None) {
+    graph.Error(Place{}, format == ForeignFormat::None ? "not a URDF, MJCF or SDFormat file"
+                                                         : "FreeCAD Assembly (.FCStd) files are not read yet",
+                format == ForeignFormat::None ? "give a .urdf, MJCF .xml or .sdf file"
+                                              : "export the assembly as URDF or write the mechanism file");
+    return result;
+  }
+  tinyxml2::XMLDocument doc;
+  if (!ParseXml(text, &doc, &graph)) return result;
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  const std::string want = format == ForeignFormat::Urdf ? "robot" : format == ForeignFormat::Mjcf ? "mujoco" : "sdf";
+  if (want != root->Name()) {
+    graph.Error(root, "the root element of a " + FormatName(format) + " file is <" + want + ">",
+                "give a " + FormatName(format) + " file");
+    return result;
+  }
+  if (format == ForeignFormat::Urdf) ReadUrdf(root, &graph);
+  if (format == ForeignFormat::Mjcf) ReadMjcf(root, &graph);
+  if (format == ForeignFormat::Sdf) ReadSdf(root, &graph);
+  if (graph.failed()) return result;
+  if (graph.description.empty())
+    graph.description = "Imported from " + display_name + " (" + FormatName(format) +
+                        ") by mechkin import; units m, rad, kg; markers at the joint frames (docs/import.md).";
+  BuildSpec(graph, options, &result);
+  return result;
+}
+
+ImportResult ImportFile(const std::string& path, const ImportOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (!in) {
+    ImportResult r;
+    r.errors.push_back({path, 0, "", "cannot read the file", "check the path and permissions"});
+    return r;
+  }
+  const std::string text = buffer.str();
+  return ImportText(text, DetectForeignFormat(path, text.substr(0, 4096)), path, options);
+}
+
+}  // namespace mechkin::importers
