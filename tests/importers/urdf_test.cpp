@@ -277,3 +277,46 @@ TEST(ImportDetection, ExtensionAndContent) {
 
 }  // namespace
 }  // namespace mechkin::import_test
+
+namespace mechkin::import_test {
+namespace {
+
+// The mimic coupling holds along a run: l2's turn from the ground is θ1 + θ2 with
+// θ2 = 2 θ1 + 0.5 — assembled from the written pose (θ2 = 0), then driven θ1 = t.
+TEST(UrdfImport, MimicCouplingHoldsAlongTheRun) {
+  const std::string path = TempFile("mimic.urdf", R"(<robot name="mimic">
+  <link name="base"/><link name="l1"/><link name="l2"/>
+  <joint name="j1" type="continuous"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/></joint>
+  <joint name="j2" type="continuous"><parent link="l1"/><child link="l2"/><origin xyz="1 0 0"/><axis xyz="0 0 1"/>
+    <mimic joint="j1" multiplier="2" offset="0.5"/></joint>
+</robot>
+)");
+  const auto report = CheckReport(path);
+  EXPECT_EQ(report["mobility"]["mobility"], 1) << report.dump();
+  const Table t = RunTable(path + " --drive j1=t --span 0:1:20");
+  ASSERT_EQ(t.at("t").size(), 21u);
+  double worst = 0;
+  for (size_t k = 0; k < t.at("t").size(); ++k) {
+    const double want = 3 * t.at("t")[k] + 0.5;  // θ1 + θ2
+    const double e0 = t.at("l2.e0")[k], e3 = t.at("l2.e3")[k];
+    worst = std::max(worst, std::abs(std::remainder(2 * std::atan2(e3, e0) - want, 2 * M_PI)));
+    worst = std::max(worst, std::abs(t.at("l1.e3")[k] - std::sin(t.at("t")[k] / 2)));
+  }
+  EXPECT_LT(worst, 1e-10);
+}
+
+// Never a crash: every prefix of the bundled test files is imported (an error or a spec).
+TEST(ImportRobustness, EveryPrefixOfTheFourBarsImportsOrFails) {
+  for (const auto& [file, format] : {std::pair{"four-bar.urdf", ForeignFormat::Urdf},
+                                     std::pair{"four-bar.xml", ForeignFormat::Mjcf}}) {
+    const std::string text = ReadText(Source(std::string("tests/data/import/") + file));
+    for (size_t n = 0; n < text.size(); n += 3) {
+      const auto r = Import(text.substr(0, n), format, file);
+      EXPECT_TRUE(r.ok() || !r.errors.empty()) << n;
+      for (const auto& e : r.errors) EXPECT_FALSE(e.message.empty());
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mechkin::import_test
