@@ -82,7 +82,7 @@ ImportResult ImportText(const std::string& text, ForeignFormat format, const std
     graph.Error(Place{}, format == ForeignFormat::None ? "not a URDF, MJCF or SDFormat file"
                                                          : "FreeCAD Assembly (.FCStd) files are not read yet",
                 format == ForeignFormat::None ? "give a .urdf, MJCF .xml or .sdf file"
-                                              : "export the assembly as URDF or write the mechanism file");
+                                              : "export the assembly as URDF (or SDFormat), or write the mechanism file");
     return result;
   }
   tinyxml2::XMLDocument doc;
