@@ -78,17 +78,18 @@ ImportResult ImportText(const std::string& text, ForeignFormat format, const std
   ImportResult result;
   result.format = format;
   Graph graph(display_name, &result);
-  if (format == ForeignFormat::FreeCad || format == ForeignFormat::None) {
-    graph.Error(Place{}, format == ForeignFormat::None ? "not a URDF, MJCF or SDFormat file"
-                                                         : "FreeCAD Assembly (.FCStd) files are not read yet",
-                format == ForeignFormat::None ? "give a .urdf, MJCF .xml or .sdf file"
-                                              : "export the assembly as URDF (or SDFormat), or write the mechanism file");
+  if (format == ForeignFormat::None) {
+    graph.Error(Place{}, "not a URDF, MJCF, SDFormat or FreeCAD Assembly file",
+                "give a .urdf, MJCF .xml, .sdf or .FCStd file");
     return result;
   }
   tinyxml2::XMLDocument doc;
   if (!ParseXml(text, &doc, &graph)) return result;
   const tinyxml2::XMLElement* root = doc.RootElement();
-  const std::string want = format == ForeignFormat::Urdf ? "robot" : format == ForeignFormat::Mjcf ? "mujoco" : "sdf";
+  const std::string want = format == ForeignFormat::Urdf   ? "robot"
+                           : format == ForeignFormat::Mjcf ? "mujoco"
+                           : format == ForeignFormat::Sdf  ? "sdf"
+                                                           : "Document";
   if (want != root->Name()) {
     graph.Error(root, "the root element of a " + FormatName(format) + " file is <" + want + ">",
                 "give a " + FormatName(format) + " file");
@@ -97,6 +98,7 @@ ImportResult ImportText(const std::string& text, ForeignFormat format, const std
   if (format == ForeignFormat::Urdf) ReadUrdf(root, &graph);
   if (format == ForeignFormat::Mjcf) ReadMjcf(root, &graph);
   if (format == ForeignFormat::Sdf) ReadSdf(root, &graph);
+  if (format == ForeignFormat::FreeCad) ReadFreeCad(root, &graph);
   if (graph.failed()) return result;
   if (graph.description.empty())
     graph.description = "Imported from " + display_name + " (" + FormatName(format) +
@@ -115,7 +117,16 @@ ImportResult ImportFile(const std::string& path, const ImportOptions& options) {
     return r;
   }
   const std::string text = buffer.str();
-  return ImportText(text, DetectForeignFormat(path, text.substr(0, 4096)), path, options);
+  const ForeignFormat format = DetectForeignFormat(path, text.substr(0, 4096));
+  if (format != ForeignFormat::FreeCad) return ImportText(text, format, path, options);
+  std::string document, why;
+  if (!ReadFcstd(path, &document, &why)) {
+    ImportResult r;
+    r.format = format;
+    r.errors.push_back({path, 0, "", why, "give a FreeCAD 1.x .FCStd file"});
+    return r;
+  }
+  return ImportText(document, format, path + ":Document.xml", options);
 }
 
 }  // namespace mechkin::importers
