@@ -17,7 +17,7 @@ using importers::ForeignFormat;
 const double kC[3] = {0.13388096599604965, 0.07247123666099901, 0};
 const double kTracer[3] = {0.0769404829980248, 0.0735561264061878, 0};
 
-std::string FourBarXml() { return Source("tests/data/import/four-bar.xml"); }
+std::string FourBarXml() { return Source("mechanisms/imported/four-bar.xml"); }
 
 // mechanisms/planar-four-bar.json with joint C spherical: the native twin of the MJCF file.
 std::string NativeWithSphericalC() {

@@ -16,7 +16,7 @@ using importers::ForeignFormat;
 const double kC[3] = {0.13388096599604965, 0.07247123666099901, 0};
 const double kTracer[3] = {0.0769404829980248, 0.0735561264061878, 0};
 
-std::string FourBarSdf() { return Source("tests/data/import/four-bar.sdf"); }
+std::string FourBarSdf() { return Source("mechanisms/imported/four-bar.sdf"); }
 
 TEST(SdfImport, FourBarLoopChecksLikeTheNativeFile) {
   const auto r = importers::ImportFile(FourBarSdf());

@@ -16,7 +16,7 @@ using importers::ForeignFormat;
 const double kC[3] = {0.13388096599604965, 0.07247123666099901, 0};  // joint C at the design pose (m)
 const double kTracer[3] = {0.0769404829980248, 0.0735561264061878, 0};  // a coupler point off the line BC
 
-std::string FourBarUrdf() { return Source("tests/data/import/four-bar.urdf"); }
+std::string FourBarUrdf() { return Source("mechanisms/imported/four-bar.urdf"); }
 
 // The URDF four-bar with its joint D replaced by `closure` (the tree A, B, C kept).
 std::string FourBarWith(const std::string& closure) {
@@ -308,14 +308,50 @@ TEST(UrdfImport, MimicCouplingHoldsAlongTheRun) {
 // Never a crash: every prefix of the bundled test files is imported (an error or a spec).
 TEST(ImportRobustness, EveryPrefixOfTheFourBarsImportsOrFails) {
   for (const auto& [file, format] : {std::pair{"four-bar.urdf", ForeignFormat::Urdf},
-                                     std::pair{"four-bar.xml", ForeignFormat::Mjcf}}) {
-    const std::string text = ReadText(Source(std::string("tests/data/import/") + file));
-    for (size_t n = 0; n < text.size(); n += 3) {
+                                     std::pair{"four-bar.xml", ForeignFormat::Mjcf},
+                                     std::pair{"four-bar.sdf", ForeignFormat::Sdf}}) {
+    const std::string text = ReadText(Source(std::string("mechanisms/imported/") + file));
+    for (size_t n = 0; n < text.size(); ++n) {
       const auto r = Import(text.substr(0, n), format, file);
       EXPECT_TRUE(r.ok() || !r.errors.empty()) << n;
       for (const auto& e : r.errors) EXPECT_FALSE(e.message.empty());
     }
   }
+}
+
+}  // namespace
+}  // namespace mechkin::import_test
+
+namespace mechkin::import_test {
+namespace {
+
+std::string SliderCrankUrdf() { return Source("mechanisms/imported/offset-slider-crank.urdf"); }
+
+// The slider-crank: the native file's redundant equations, the piston's closed form
+// x = a cos θ + √(b² − (a sin θ − e)²), and the guide's limits stop a run that leaves them.
+TEST(UrdfImport, SliderCrankMatchesNativeClosedFormAndLimits) {
+  const auto native = CheckReport(Source("mechanisms/offset-slider-crank.json"));
+  const auto imported = CheckReport(SliderCrankUrdf());
+  EXPECT_EQ(imported["mobility"]["redundant_equations"], native["mobility"]["redundant_equations"]);
+  EXPECT_EQ(imported["mobility"]["mobility"], 1);
+  const Table t = RunTable(SliderCrankUrdf() + " --drive bearing=2*pi*t");
+  ASSERT_EQ(t.at("t").size(), 361u);
+  double worst = 0;
+  for (size_t k = 0; k < t.at("t").size(); ++k) {
+    const double th = M_PI / 6 + 2 * M_PI * t.at("t")[k], a = 0.04, b = 0.12, e = 0.01;
+    const double x = a * std::cos(th) + std::sqrt(b * b - (a * std::sin(th) - e) * (a * std::sin(th) - e));
+    worst = std::max({worst, std::abs(t.at("slider.x")[k] - x), std::abs(t.at("slider.y")[k] - e)});
+  }
+  EXPECT_LT(worst, 1e-12);
+  const auto r = importers::ImportFile(SliderCrankUrdf());
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  EXPECT_NEAR(r.spec->bodies[1].inertia->mass->number, 0.3, 0);
+  // Narrower limits: the slide from the design pose reaches −0.05 m on the way in.
+  std::string text = ReadText(SliderCrankUrdf());
+  text.replace(text.find("lower=\"-0.1\""), 12, "lower=\"-0.05\"");
+  const auto stop = mechkin_test::RunCli("run " + TempFile("limited.urdf", text) + " --drive bearing=2*pi*t -o /dev/null");
+  EXPECT_EQ(stop.code, 1);
+  EXPECT_NE(stop.out.find("joint `guide` reaches its lower limit"), std::string::npos) << stop.out;
 }
 
 }  // namespace
