@@ -1,4 +1,6 @@
 // The graph's bookkeeping, its messages and the XML helpers of the readers.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -73,8 +75,51 @@ bool Graph::AddJoint(Joint joint, const tinyxml2::XMLElement* e) {
   return true;
 }
 
+// The name of the first element of an XML text (after the declaration, comments, doctype).
+std::string RootName(const std::string& head) {
+  size_t k = 0;
+  while ((k = head.find('<', k)) != std::string::npos) {
+    if (head.compare(k, 4, "<!--") == 0) {
+      k = head.find("-->", k);
+      if (k == std::string::npos) return "";
+      continue;
+    }
+    if (head.compare(k, 2, "<?") == 0 || head.compare(k, 2, "<!") == 0) {
+      ++k;
+      continue;
+    }
+    size_t e = k + 1;
+    while (e < head.size() && (std::isalnum(static_cast<unsigned char>(head[e])) || head[e] == '_' || head[e] == ':'))
+      ++e;
+    return head.substr(k + 1, e - k - 1);
+  }
+  return "";
+}
+
+
+namespace {
+
+// Stray text after the root element (files in the wild have it; MuJoCo, Gazebo and
+// ROS read them): the document up to the root's last closing tag, the rest skipped.
+bool ParseWithoutTrailingText(const std::string& text, tinyxml2::XMLDocument* doc, Graph* graph) {
+  const std::string close = "</" + RootName(text.substr(0, 4096)) + ">";
+  const auto end = text.rfind(close);
+  if (close.size() <= 3 || end == std::string::npos) return false;
+  const std::string prefix = text.substr(0, end + close.size());
+  if (text.find_first_not_of(" \t\r\n", prefix.size()) == std::string::npos) return false;
+  tinyxml2::XMLDocument trimmed;
+  if (trimmed.Parse(prefix.data(), prefix.size()) != tinyxml2::XML_SUCCESS || !trimmed.RootElement()) return false;
+  const int line = 1 + static_cast<int>(std::count(prefix.begin(), prefix.end(), '\n'));
+  graph->Warn(Place{line, ""}, "text after the root element's " + close + " is skipped");
+  doc->Parse(prefix.data(), prefix.size());
+  return true;
+}
+
+}  // namespace
+
 bool ParseXml(const std::string& text, tinyxml2::XMLDocument* doc, Graph* graph) {
   if (doc->Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS && doc->RootElement()) return true;
+  if (doc->ErrorID() == tinyxml2::XML_ERROR_PARSING_TEXT && ParseWithoutTrailingText(text, doc, graph)) return true;
   // ErrorStr() reads "Error=NAME ErrorID=.. (0x..) Line number=N: DETAIL": keep NAME and DETAIL.
   std::string why = doc->Error() ? doc->ErrorName() : "no root element";
   const std::string full = doc->Error() && doc->ErrorStr() ? doc->ErrorStr() : "";

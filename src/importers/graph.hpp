@@ -108,7 +108,9 @@ void BuildSpec(const Graph& graph, const ImportOptions& options, ImportResult* r
 
 // XML helpers shared by the readers.
 
-/// Parses the document; false (an error with the line) when it is not well-formed XML.
+/// The name of the first element of an XML text (after the declaration, comments, doctype).
+std::string RootName(const std::string& head);
+/// Parses the document (text after the root element skipped with a warning); false (an error with the line) when it is not well-formed XML.
 bool ParseXml(const std::string& text, tinyxml2::XMLDocument* doc, Graph* graph);
 /// <tag name="..."> for messages.
 std::string Describe(const tinyxml2::XMLElement* e);

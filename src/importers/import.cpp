@@ -33,27 +33,6 @@ std::string Extension(const std::string& path) {
   return Lower(path.substr(dot + 1));
 }
 
-// The name of the first element of an XML text (after the declaration, comments, doctype).
-std::string RootName(const std::string& head) {
-  size_t k = 0;
-  while ((k = head.find('<', k)) != std::string::npos) {
-    if (head.compare(k, 4, "<!--") == 0) {
-      k = head.find("-->", k);
-      if (k == std::string::npos) return "";
-      continue;
-    }
-    if (head.compare(k, 2, "<?") == 0 || head.compare(k, 2, "<!") == 0) {
-      ++k;
-      continue;
-    }
-    size_t e = k + 1;
-    while (e < head.size() && (std::isalnum(static_cast<unsigned char>(head[e])) || head[e] == '_' || head[e] == ':'))
-      ++e;
-    return head.substr(k + 1, e - k - 1);
-  }
-  return "";
-}
-
 }  // namespace
 
 ForeignFormat DetectForeignFormat(const std::string& path, const std::string& head) {

@@ -136,3 +136,26 @@ TEST(SdfImport, CommandsExitOneAndWriteNothing) {
 
 }  // namespace
 }  // namespace mechkin::import_test
+
+namespace mechkin::import_test {
+namespace {
+
+// Files in the wild: "--" inside a comment is read; stray text after the root element is
+// skipped with a warning naming the line, as the formats' own parsers do.
+TEST(SdfImport, ToleratesWhatTheFormatsOwnParsersRead) {
+  std::string text = ReadText(FourBarSdf());
+  text.insert(text.find("<sdf"), "<!-- generated -- by hand -->\n");
+  text += "\ntrailing words\n";
+  const auto r = Import(text, ForeignFormat::Sdf, "wild.sdf");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  bool skipped = false;
+  for (const auto& w : r.warnings) skipped |= w.ToString().find("text after the root element's </sdf> is skipped") != std::string::npos;
+  EXPECT_TRUE(skipped);
+  const auto empty = mechkin_test::RunCli("check " + TempFile("empty.urdf", ""));
+  EXPECT_EQ(empty.code, 1);
+  EXPECT_NE(empty.out.find("empty.urdf"), std::string::npos);
+  EXPECT_NE(empty.out.find("not well-formed XML"), std::string::npos) << empty.out;
+}
+
+}  // namespace
+}  // namespace mechkin::import_test

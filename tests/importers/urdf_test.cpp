@@ -356,3 +356,19 @@ TEST(UrdfImport, SliderCrankMatchesNativeClosedFormAndLimits) {
 
 }  // namespace
 }  // namespace mechkin::import_test
+
+namespace mechkin::import_test {
+namespace {
+
+TEST(UrdfImport, RunWithoutDriveNamesTheJoints) {
+  const auto r = mechkin_test::RunCli("run " + FourBarUrdf());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.out.find("an imported file drives no joint: give --drive JOINT=FUNCTION"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("joints: A, B, C, D"), std::string::npos) << r.out;
+  const auto span = mechkin_test::RunCli("run " + FourBarUrdf() + " --drive A=t --span 1:0:10");
+  EXPECT_EQ(span.code, 2);
+  EXPECT_NE(span.out.find("--span '1:0:10': expected START:END:STEPS"), std::string::npos) << span.out;
+}
+
+}  // namespace
+}  // namespace mechkin::import_test

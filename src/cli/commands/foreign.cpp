@@ -45,10 +45,11 @@ bool ParseForeignOptions(const ForeignOptions& typed, importers::ImportOptions* 
 importers::ForeignFormat ForeignFormatOf(const std::string& path) {
   if (path == "-") return importers::ForeignFormat::None;
   std::ifstream in(path, std::ios::binary);
+  if (!in.is_open()) return importers::ForeignFormat::None;  // the loader says why
   std::string head(4096, '\0');
   in.read(&head[0], static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));
-  if (head.empty()) return importers::ForeignFormat::None;
+  // An empty file is still named by its extension (an empty .urdf is a malformed URDF).
   return importers::DetectForeignFormat(path, head);
 }
 
@@ -88,6 +89,17 @@ bool ForeignOptionsFit(const std::string& path, const importers::ImportOptions& 
   if (ForeignFormatOf(path) != importers::ForeignFormat::None) return true;
   err << "mechkin: " << path << ": --drive and --span are for imported (URDF, MJCF, SDFormat) files; "
       << "a mechanism file has its own drivers and analysis\n";
+  return false;
+}
+
+bool ForeignHasDrives(const std::string& path, const importers::ImportOptions& foreign, const Model& model,
+                      const std::string& command, std::ostream& err) {
+  if (!foreign.drives.empty() || ForeignFormatOf(path) == importers::ForeignFormat::None) return true;
+  std::string names;
+  for (const auto& j : model.joints) names += (names.empty() ? "" : ", ") + j.name;
+  err << "mechkin " << command << ": " << path << ": an imported file drives no joint: give --drive JOINT=FUNCTION "
+      << "(a function of t in rad or m, e.g. --drive " << (model.joints.empty() ? "J" : model.joints[0].name)
+      << "='2*pi*t'); joints: " << names << "\n";
   return false;
 }
 

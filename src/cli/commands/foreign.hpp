@@ -36,6 +36,11 @@ LoadResult LoadAnyMechanism(const std::string& path, const ParameterOverrides& o
 /// `options` given for a file that is not foreign: a message and false.
 bool ForeignOptionsFit(const std::string& path, const importers::ImportOptions& options, std::ostream& err);
 
+/// False (with a message naming the joints) when `path` is foreign and no --drive was
+/// given: run and view need drivers, which those files do not have.
+bool ForeignHasDrives(const std::string& path, const importers::ImportOptions& foreign, const Model& model,
+                      const std::string& command, std::ostream& err);
+
 struct ImportCommandOptions {
   std::string file;
   std::string output;  // -o; default stdout

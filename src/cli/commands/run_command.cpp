@@ -228,7 +228,7 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   importers::ImportOptions foreign;
   if (!ParseOverrides(o.set, &overrides, err) || !ParseForeignOptions(o.foreign, &foreign, err)) return 2;
   const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides, foreign);
-  if (!loaded) return 1;
+  if (!loaded || !ForeignHasDrives(o.file, foreign, *loaded, "run", err)) return 1;
   const Model& model = *loaded;
   RunPlan plan;
   if (!PlanFor(o, model, &plan, err)) return 2;

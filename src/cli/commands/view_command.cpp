@@ -98,7 +98,7 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   importers::ImportOptions foreign;
   if (!ParseOverrides(o.set, &overrides, err) || !ParseForeignOptions(o.foreign, &foreign, err)) return 2;
   const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides, foreign);
-  if (!loaded) return 1;
+  if (!loaded || !ForeignHasDrives(o.file, foreign, *loaded, "view", err)) return 1;
   const Model& model = *loaded;
   RunRequest request = o.Request();
   std::string why;
