@@ -88,9 +88,9 @@ TEST(MjcfImport, AngleUnitsAndOrientationFormsGiveTheSamePoses) {
     text.replace(k, a.size(), b);
   };
   replace("angle=\"degree\"", "angle=\"radian\" eulerseq=\"ZYX\"");
-  replace("euler=\"0 0 60\"", "quat=\"" + std::to_string(2 * std::cos(M_PI / 6)) + " 0 0 " +
-                                   std::to_string(2 * std::sin(M_PI / 6)) + "\"");  // not normalised
   char buf[200];
+  std::snprintf(buf, sizeof buf, "quat=\"%.17g 0 0 %.17g\"", 2 * std::cos(M_PI / 6), 2 * std::sin(M_PI / 6));
+  replace("euler=\"0 0 60\"", buf);  // not normalised
   std::snprintf(buf, sizeof buf, "axisangle=\"0 0 2 %.17g\"", phi);
   const auto e1 = text.find("euler=\"0 0 -41");
   ASSERT_NE(e1, std::string::npos);
@@ -105,7 +105,7 @@ TEST(MjcfImport, AngleUnitsAndOrientationFormsGiveTheSamePoses) {
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
         EXPECT_NEAR(radian.spec->bodies[b].orientation->matrix[i][k].number,
-                    degree.spec->bodies[b].orientation->matrix[i][k].number, 1e-6)
+                    degree.spec->bodies[b].orientation->matrix[i][k].number, 1e-14)
             << "body " << b;
 }
 
