@@ -8,6 +8,7 @@
 #include "cli/commands/bench_command.hpp"
 #include "cli/commands/check_command.hpp"
 #include "cli/commands/convert_command.hpp"
+#include "cli/commands/foreign.hpp"
 #include "cli/commands/range_command.hpp"
 #include "cli/commands/run_command.hpp"
 #include "cli/commands/sweep_command.hpp"
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
     mechkin::SetupRangeCommand(app, &range);
     mechkin::ConvertCommandOptions convert;
     mechkin::SetupConvertCommand(app, &convert);
+    mechkin::ImportCommandOptions import_options;
+    mechkin::SetupImportCommand(app, &import_options);
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -49,6 +52,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("range")) code = mechkin::RunRangeCommand(range, std::cout, std::cerr);
     if (app.got_subcommand("sweep")) code = mechkin::RunSweepCommand(sweep, std::cout, std::cerr);
     if (app.got_subcommand("convert")) code = mechkin::RunConvertCommand(convert, std::cout, std::cerr);
+    if (app.got_subcommand("import")) code = mechkin::RunImportCommand(import_options, std::cout, std::cerr);
     if (app.got_subcommand("tolerance")) code = mechkin::RunToleranceCommand(tolerance, std::cout, std::cerr);
     // A report that could not be written is a failure, not a success.
     std::cout.flush();

@@ -4,7 +4,7 @@ layers that read and write files.
 
 The layers, lowest first; each may include only its own folder and the ones below
 (the CMake targets mechkin_<layer> link the same way, CMakeLists.txt):
-    math → joints → spec → model → constraints → kinematics → mobility → analysis → io → cli
+    math → joints → spec → importers → model → constraints → kinematics → mobility → analysis → io → cli
 nlohmann/json may be included only in src/spec and src/io (and the allow-list).
 
 Usage: check_layers.py [SOURCE_DIR]   (default: the repository holding this file)
@@ -15,7 +15,7 @@ import sys
 
 from planted import check_main
 
-LAYERS = ["math", "joints", "spec", "model", "constraints", "kinematics", "mobility", "analysis", "io", "cli"]
+LAYERS = ["math", "joints", "spec", "importers", "model", "constraints", "kinematics", "mobility", "analysis", "io", "cli"]
 JSON_LAYERS = {"spec", "io"}
 # Files allowed a JSON include outside spec and io: none (the loader became src/spec,
 # the CLI's report text comes from src/io). Keep it empty.

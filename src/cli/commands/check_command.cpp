@@ -11,7 +11,7 @@ namespace mechkin {
 
 void SetupCheckCommand(CLI::App& app, CheckOptions* options) {
   CLI::App* cmd = app.add_subcommand("check", "Validate mechanism files; report degrees of freedom and expectations");
-  cmd->add_option("files", options->files, "Mechanism files (format v1)")->required();
+  cmd->add_option("files", options->files, "Mechanism files (format v1), or URDF, MJCF, SDFormat files (imported)")->required();
   cmd->add_option("--format", options->format, "Report format")
       ->check(CLI::IsMember(NamesOf<ReportFormat>()))
       ->default_str("text");
@@ -20,6 +20,7 @@ void SetupCheckCommand(CLI::App& app, CheckOptions* options) {
                 "Count the assembly branches at the drivers' design values (random restarts of the assembly)");
   cmd->add_option("--restarts", options->restarts, "Random starts for --branches (default 200)")
       ->check(CLI::Range(1, 1000000));
+  AddForeignOptions(cmd, &options->foreign);
   cmd->add_flag("--clearance", options->clearance,
                 "Sweep the analysis span: each clearance output's (else each unjointed pair of shaped bodies') "
                 "smallest clearance and where; the tightest pair first");
@@ -27,12 +28,14 @@ void SetupCheckCommand(CLI::App& app, CheckOptions* options) {
 
 int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) {
   ParameterOverrides overrides;
-  if (!ParseOverrides(options.set, &overrides, err)) return 2;
+  importers::ImportOptions foreign;
+  if (!ParseOverrides(options.set, &overrides, err) || !ParseForeignOptions(options.foreign, &foreign, err)) return 2;
   std::vector<CheckReport> reports;
   for (const auto& f : options.files) {
     CheckReport r;
     try {
-      const LoadResult loaded = LoadMechanismFile(f, overrides);
+      if (!ForeignOptionsFit(f, foreign, err)) return 2;
+      const LoadResult loaded = LoadAnyMechanism(f, overrides, foreign);
       r = CheckLoaded(f, loaded);
       if (options.branches && loaded.ok()) r.branches = CountBranches(*loaded.model, options.restarts);
       if (options.clearance && loaded.ok() && !r.clearance) AddClearanceCheck(*loaded.model, &r);

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/commands/foreign.hpp"
+
 namespace mechkin {
 
 struct CheckOptions {
@@ -21,6 +23,7 @@ struct CheckOptions {
   std::vector<std::string> set;  // --set NAME=VALUE
   bool branches = false;         // count the assembly branches at the design driver values
   int restarts = 200;
+  ForeignOptions foreign;        // --drive, --span: for imported files
   bool clearance = false;        // sweep the analysis span: the tightest pair of shaped bodies and where
 };
 

@@ -5,11 +5,14 @@
 #include "io/output_file.hpp"
 
 #include "analysis/load.hpp"
+#include "cli/commands/foreign.hpp"
 
 namespace mechkin {
 
-std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err, const ParameterOverrides& overrides) {
-  LoadResult loaded = LoadMechanismFile(file, overrides);
+std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err, const ParameterOverrides& overrides,
+                                    const importers::ImportOptions& foreign) {
+  if (!ForeignOptionsFit(file, foreign, err)) return std::nullopt;
+  LoadResult loaded = LoadAnyMechanism(file, overrides, foreign);
   for (const auto& w : loaded.warnings) err << file << ": warning: " << w.ToString() << "\n";
   if (!loaded.ok()) {
     for (const auto& e : loaded.errors) err << file << ": error: " << e.ToString() << "\n";

@@ -9,14 +9,17 @@
 #include <vector>
 
 #include "analysis/load.hpp"
+#include "importers/importers.hpp"
 #include "io/output_file.hpp"
 
 namespace mechkin {
 
 /// The compiled model, or nothing when the file is invalid (its errors printed).
-/// `overrides`: --set values of the file's parameters.
+/// `overrides`: --set values of the file's parameters. A foreign file (URDF, MJCF,
+/// SDFormat: cli/commands/foreign.hpp) is imported with `foreign`'s drives and span.
 std::optional<Model> LoadForCommand(const std::string& file, std::ostream& err,
-                                    const ParameterOverrides& overrides = {});
+                                    const ParameterOverrides& overrides = {},
+                                    const importers::ImportOptions& foreign = {});
 /// Writes a finished report to `path` (empty or "-": `out`) atomically; on failure
 /// prints "mechkin COMMAND: why" and returns false. `inputs`: files it must not overwrite.
 bool WriteReport(const std::string& path, const std::vector<std::string>& inputs, const std::string& text,

@@ -53,6 +53,7 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
   cmd->add_option("--sensitivity", o->sensitivity,
                   "Parameters (comma-separated): adds d(column)/d(parameter) for every body and output column")
       ->delimiter(',');
+  AddForeignOptions(cmd, &o->foreign);
   cmd->callback([o, cmd] {
     o->bodies_given = cmd->count("--bodies") > 0;
     o->outputs_given = cmd->count("--outputs") > 0;
@@ -224,9 +225,10 @@ bool PlanFor(const RunOptions& o, const Model& model, RunPlan* plan, std::ostrea
 
 int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   ParameterOverrides overrides;
-  if (!ParseOverrides(o.set, &overrides, err)) return 2;
-  const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides);
-  if (!loaded) return 1;
+  importers::ImportOptions foreign;
+  if (!ParseOverrides(o.set, &overrides, err) || !ParseForeignOptions(o.foreign, &foreign, err)) return 2;
+  const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides, foreign);
+  if (!loaded || !ForeignHasDrives(o.file, foreign, *loaded, "run", err)) return 1;
   const Model& model = *loaded;
   RunPlan plan;
   if (!PlanFor(o, model, &plan, err)) return 2;

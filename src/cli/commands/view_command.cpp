@@ -27,6 +27,7 @@ void SetupViewCommand(CLI::App& app, ViewOptions* o) {
   cmd->add_option("--up", o->up, "Axis drawn upwards (default: the file's view.up, else against gravity, else y)")->check(CLI::IsMember({"x", "y", "z"}));
   cmd->add_option("--plots", o->plots, "Plotted columns: names separated by ',' within a plot, ';' between plots");
   AddKeepPartialOption(cmd, &o->keep_partial, "the page of the rows computed");
+  AddForeignOptions(cmd, &o->foreign);
 }
 
 namespace {
@@ -94,9 +95,10 @@ RunRequest ViewOptions::Request() const {
 
 int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   ParameterOverrides overrides;
-  if (!ParseOverrides(o.set, &overrides, err)) return 2;
-  const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides);
-  if (!loaded) return 1;
+  importers::ImportOptions foreign;
+  if (!ParseOverrides(o.set, &overrides, err) || !ParseForeignOptions(o.foreign, &foreign, err)) return 2;
+  const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides, foreign);
+  if (!loaded || !ForeignHasDrives(o.file, foreign, *loaded, "view", err)) return 1;
   const Model& model = *loaded;
   RunRequest request = o.Request();
   std::string why;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "analysis/run_request.hpp"
+#include "cli/commands/foreign.hpp"
 
 namespace mechkin {
 
@@ -29,6 +30,7 @@ struct ViewOptions {
   std::vector<std::string> set;  // --set NAME=NUMBER, as `run`
   std::string up;                // --up x|y|z (empty: the file's view.up, else against gravity, else y)
   std::string plots;             // --plots "a,b;c": panels of columns
+  ForeignOptions foreign;        // --drive, --span: for an imported file
 };
 
 void SetupViewCommand(CLI::App& app, ViewOptions* options);

@@ -1,0 +1,123 @@
+// FreeCAD Assembly import (issue 26, docs/import.md): tests/data/import/four-bar-Document.xml
+// zipped into an .FCStd imports to the native four-bar's mobility, redundant equations and
+// motion (a revolute saved with opposite z axes included); unsupported joint kinds are
+// named with what they would need; malformed archives and documents are refused.
+#include <gtest/gtest.h>
+#include <zip.h>
+
+#include <cmath>
+
+#include "import_test_util.hpp"
+
+namespace mechkin::import_test {
+namespace {
+
+using importers::ForeignFormat;
+
+const double kC[3] = {0.13388096599604965, 0.07247123666099901, 0};
+const double kTracer[3] = {0.0769404829980248, 0.0735561264061878, 0};
+
+// An .FCStd archive holding `document` as its Document.xml (and a GuiDocument.xml).
+std::string Fcstd(const std::string& name, const std::string& document) {
+  const std::string path = TempFile(name, "");
+  std::remove(path.c_str());
+  int code = 0;
+  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &code);
+  EXPECT_NE(z, nullptr);
+  static std::vector<std::string> keep;  // the buffers live until zip_close
+  keep.push_back(document);
+  keep.push_back("<?xml version='1.0'?><Document/>");
+  zip_file_add(z, "Document.xml", zip_source_buffer(z, keep[keep.size() - 2].data(), keep[keep.size() - 2].size(), 0),
+               ZIP_FL_OVERWRITE);
+  zip_file_add(z, "GuiDocument.xml", zip_source_buffer(z, keep.back().data(), keep.back().size(), 0), ZIP_FL_OVERWRITE);
+  EXPECT_EQ(zip_close(z), 0);
+  return path;
+}
+
+std::string FourBarDocument() { return ReadText(Source("tests/data/import/four-bar-Document.xml")); }
+
+TEST(FreeCadImport, FourBarChecksAndRunsLikeTheNativeFile) {
+  const std::string path = Fcstd("four-bar.FCStd", FourBarDocument());
+  const auto r = importers::ImportFile(path);
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  ASSERT_EQ(r.spec->bodies.size(), 3u);  // the frame is grounded
+  EXPECT_EQ(*r.spec->bodies[0].name, "crank");
+  ASSERT_EQ(r.spec->joints.size(), 4u);
+  EXPECT_EQ(*r.spec->joints[2].name, "C");
+  bool flipped = false;
+  for (const auto& w : r.warnings) flipped |= w.ToString().find("<Object name=\"Joint002\">: the joint's two frames have opposite z") != std::string::npos;
+  EXPECT_TRUE(flipped);
+  const auto native = CheckReport(Source("mechanisms/planar-four-bar.json"));
+  const auto imported = CheckReport(path);
+  EXPECT_EQ(imported["mobility"]["mobility"], 1) << imported.dump();
+  EXPECT_EQ(imported["mobility"]["redundant"], 3);
+  EXPECT_EQ(imported["mobility"]["redundant_equations"], native["mobility"]["redundant_equations"]);
+  // Both solved to 1e-14 of the size: the paths agree to 1e-12 of the 0.1 m frame.
+  const Table nt = RunTable(Source("mechanisms/planar-four-bar.json") + " --tol 1e-14");
+  const Table it = RunTable(path + " --drive A=2*pi*t --tol 1e-14");
+  ASSERT_EQ(it.at("t").size(), 361u);
+  EXPECT_LT(PathDistance(PointPath(it, "coupler", kC), PointPath(nt, "coupler", kC)), 1e-13);
+  EXPECT_LT(PathDistance(PointPath(it, "coupler", kTracer), PointPath(nt, "coupler", kTracer)), 1e-13);
+}
+
+// The four-bar document with joint D's type index replaced.
+std::string WithJointType(int index) {
+  std::string doc = FourBarDocument();
+  const auto d = doc.find("<Object name=\"Joint003\">");
+  const std::string was = "<Integer value=\"1\"/>";
+  const auto k = doc.find(was, d);
+  doc.replace(k, was.size(), "<Integer value=\"" + std::to_string(index) + "\"/>");
+  return doc;
+}
+
+int LineOf(const std::string& text, const std::string& what) {
+  const auto k = text.find(what);
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(k), '\n'));
+}
+
+TEST(FreeCadImport, UnsupportedJointKindsSayWhatTheyNeed) {
+  const std::string doc = FourBarDocument();
+  const int line = LineOf(doc, "<Object name=\"Joint003\">");
+  const std::pair<int, const char*> kinds[] = {{5, "Distance joint is not supported"},
+                                               {6, "Parallel joint is not supported"},
+                                               {7, "Perpendicular joint is not supported"},
+                                               {8, "Angle joint is not supported"},
+                                               {9, "RackPinion joint is not supported — it would need the revolute and prismatic"},
+                                               {10, "Screw joint is not supported"},
+                                               {11, "Gears joint is not supported — it would need the two revolute joints it couples"},
+                                               {12, "Belt joint is not supported"},
+                                               {13, "JointType is not one of FreeCAD's 13 joint types"}};
+  for (const auto& [index, reason] : kinds) {
+    const auto r = Import(WithJointType(index), ForeignFormat::FreeCad, "a.FCStd:Document.xml");
+    EXPECT_FALSE(r.ok()) << index;
+    const std::string all = Errors(r);
+    const int at = index == 13 ? LineOf(doc, "<Object name=\"Joint003\">") + 3 : line;
+    EXPECT_NE(all.find("a.FCStd:Document.xml:" + std::to_string(at) + ": "), std::string::npos) << index << ": " << all;
+    EXPECT_NE(all.find(reason), std::string::npos) << index << ": " << all;
+  }
+}
+
+TEST(FreeCadImport, MalformedArchivesAndDocumentsAreRefused) {
+  const std::string not_zip = TempFile("broken.FCStd", "this is not a zip");
+  const auto a = importers::ImportFile(not_zip);
+  EXPECT_NE(Errors(a).find("broken.FCStd: not a readable zip archive"), std::string::npos) << Errors(a);
+  const std::string empty = Fcstd("other.FCStd", "");
+  std::remove(empty.c_str());
+  int code = 0;
+  zip_t* z = zip_open(empty.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &code);
+  static const char kText[] = "x";
+  zip_file_add(z, "GuiDocument.xml", zip_source_buffer(z, kText, 1, 0), 0);
+  zip_close(z);
+  EXPECT_NE(Errors(importers::ImportFile(empty)).find("no readable Document.xml"), std::string::npos);
+  std::string doc = FourBarDocument();
+  const auto ref = doc.find("<Sub value=\"Crank.Edge1\"/>");
+  doc.replace(doc.find("name=\"Assembly\"", ref - 80), 15, "name=\"Nothing\"");
+  const auto r = Import(doc, ForeignFormat::FreeCad, "b.FCStd:Document.xml");
+  EXPECT_NE(Errors(r).find("Reference2: no object 'Nothing'"), std::string::npos) << Errors(r);
+  const auto cli = mechkin_test::RunCli("check " + Fcstd("gears.FCStd", WithJointType(11)));
+  EXPECT_EQ(cli.code, 1);
+  EXPECT_NE(cli.out.find("gears.FCStd:Document.xml:"), std::string::npos) << cli.out;
+}
+
+}  // namespace
+}  // namespace mechkin::import_test
