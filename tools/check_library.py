@@ -20,6 +20,7 @@ import json
 import math
 import os
 import random
+import resource
 import shutil
 import subprocess
 import sys
@@ -149,15 +150,24 @@ def generate(folder, count, seed=31, slow_steps=0):
 
 
 def timed_check(exe, listing, jobs, out):
+    """The run's result, wall-clock and CPU seconds (user + system), and its lines."""
     if os.path.exists(out):
         os.remove(out)
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.monotonic()
     r = subprocess.run([exe, "check", "--format", "jsonl", "--files-from", listing, "--jobs", str(jobs), "-o", out],
                        capture_output=True, text=True)
     seconds = time.monotonic() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
     with open(out) as f:
         lines = f.read().splitlines()
-    return r, seconds, lines
+    return r, seconds, cpu, lines
+
+
+def report(what, lines, seconds, cpu, code):
+    print("%-9s %d files in %.2f s: %.0f files/s; CPU %.2f s (%.0f files per CPU-second); exit %d; load %.1f" % (
+        what, len(lines), seconds, len(lines) / seconds, cpu, len(lines) / max(cpu, 1e-9), code, os.getloadavg()[0]))
 
 
 def verdict_counts(lines):
@@ -174,11 +184,11 @@ def benchmark(args):
     paths = generate(folder, args.files)
     print("generated %d files in %s (%.1f s)" % (len(paths), folder, time.monotonic() - t0))
     listing = os.path.join(folder, "list.txt")
-    serial, t1, lines1 = timed_check(args.mechkin, listing, 1, os.path.join(folder, "serial.jsonl"))
-    parallel, t2, lines2 = timed_check(args.mechkin, listing, args.jobs, os.path.join(folder, "parallel.jsonl"))
-    print("serial:   %d files in %.2f s: %.0f files/s (exit %d)" % (len(lines1), t1, len(lines1) / t1, serial.returncode))
-    print("--jobs %d: %d files in %.2f s: %.0f files/s (exit %d)" % (args.jobs, len(lines2), t2, len(lines2) / t2,
-                                                                    parallel.returncode))
+    print("%d cores; load average %.1f before the runs" % (os.cpu_count(), os.getloadavg()[0]))
+    serial, t1, c1, lines1 = timed_check(args.mechkin, listing, 1, os.path.join(folder, "serial.jsonl"))
+    report("serial:", lines1, t1, c1, serial.returncode)
+    parallel, t2, c2, lines2 = timed_check(args.mechkin, listing, args.jobs, os.path.join(folder, "parallel.jsonl"))
+    report("--jobs %d:" % args.jobs, lines2, t2, c2, parallel.returncode)
     print("verdicts:", ", ".join("%d %s" % (n, v) for v, n in sorted(verdict_counts(lines1).items())))
     same = sorted(lines1) == sorted(lines2) and len(lines1) == len(paths)
     same = same and serial.returncode == parallel.returncode

@@ -16,10 +16,13 @@
    line:column point at the offending keys (checked against the file's text).
 6. A run of 60 generated files killed (SIGKILL) half way, then --resume, ends with
    the lines of an uninterrupted run.
+7. Progress (files done, rate, time left) on stderr when it is a terminal, none
+   when it is a pipe.
 Usage: check_library_test.py SOURCE_DIR MECHKIN_BINARY
 """
 import json
 import os
+import pty
 import signal
 import subprocess
 import sys
@@ -155,6 +158,31 @@ def killed_then_resumed(exe, src, tmp):
     check(final == expected, "after the kill and --resume the lines are the uninterrupted run's")
 
 
+def progress(exe, tmp):
+    """Progress lines on a terminal's stderr (a pty here), none on a pipe."""
+    listing = os.path.join(tmp, "library", "list.txt")
+    args = [exe, "check", "--format", "jsonl", "--jobs", "2", "--files-from", listing]
+    master, slave = pty.openpty()
+    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=slave)
+    os.close(slave)
+    seen = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:  # EIO: the child closed the terminal
+            break
+        if not chunk:
+            break
+        seen += chunk
+    os.close(master)
+    proc.wait()
+    check(b"\r\x1b[K" in seen and b"/60 files, " in seen and b" files/s" in seen and b" s left" in seen,
+          "progress on a terminal: %r" % seen[:200])
+    check(b"mechkin check: 60 files" in seen, "the summary follows the progress: %r" % seen[-300:])
+    piped = subprocess.run(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    check(b"\r" not in piped.stderr and b"mechkin check: 60 files" in piped.stderr, "no progress on a pipe")
+
+
 def count_lines(path):
     try:
         with open(path, "rb") as f:
@@ -232,6 +260,7 @@ def main():
         refusals(exe, files, tmp)
         sarif_and_gcc(exe, tmp)
         killed_then_resumed(exe, src, tmp)
+        progress(exe, tmp)
     for f in failures:
         print("FAIL", f)
     print("%d failures" % len(failures))

@@ -1,6 +1,9 @@
 #include "cli/commands/check_command.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <iostream>
 #include <memory>
 
 #include "analysis/check_file.hpp"
@@ -107,14 +110,23 @@ int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) 
     return 1;
   }
   CheckTally tally(plan);
+  // On a terminal only (a redirected or captured stderr gets the summary alone), and
+  // not over reports written to that terminal.
+  const bool reports_on_terminal = options.output.empty() && &out == &std::cout && ::isatty(STDOUT_FILENO);
+  CheckProgress progress(&err == &std::cerr && ::isatty(STDERR_FILENO) && !reports_on_terminal && !options.quiet &&
+                             plan.files.size() > 1,
+                         plan.files.size(), err);
+  size_t done = 0;
   bool write_failed = false;
   CheckFiles(plan.files, RequestOf(options, overrides), options.jobs, options.sorted,
              [&](size_t index, FileCheck&& c) {
                tally.Add(plan.files[index], c);
+               progress.Update(++done);
                if (sink.Deliver(index, std::move(c), &error)) return true;
                write_failed = true;
                return false;
              });
+  progress.Finish();
   sink.Finish();
   if (write_failed) err << "mechkin check: " << error << "\n";
   if (plan.summary && !options.quiet) tally.PrintSummary(options.jobs, err);
