@@ -163,7 +163,8 @@ bool ReadCheckLines(const std::string& path, CheckLines* lines, std::string* err
 }
 
 SyncedLines::~SyncedLines() {
-  if (fd_ >= 0) ::close(fd_);
+  std::string ignored;
+  Close(&ignored);
 }
 
 bool SyncedLines::Open(const std::string& path, size_t keep_bytes, std::string* error) {
@@ -174,25 +175,74 @@ bool SyncedLines::Open(const std::string& path, size_t keep_bytes, std::string* 
     *error = "cannot open '" + path + "' for writing: " + std::strerror(errno);
     return false;
   }
+  worker_ = std::thread([this] { Work(); });
   return true;
 }
 
-bool SyncedLines::Append(const std::string& line, std::string* error) {
+constexpr size_t kMaxQueuedLines = 1024;  // a bound on the memory lines wait in
+
+bool SyncedLines::Append(std::string line, std::string* error) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  room_.wait(lock, [&] { return queue_.size() < kMaxQueuedLines || failed_; });
+  if (failed_) {
+    *error = error_;
+    return false;
+  }
+  queue_.push_back(std::move(line));
+  ready_.notify_one();
+  return true;
+}
+
+bool SyncedLines::Close(std::string* error) {
+  if (worker_.joinable()) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      closing_ = true;
+    }
+    ready_.notify_one();
+    worker_.join();
+  }
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (failed_) *error = error_;
+  return !failed_;
+}
+
+void SyncedLines::Work() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    ready_.wait(lock, [&] { return !queue_.empty() || closing_; });
+    if (queue_.empty()) return;
+    const std::string line = std::move(queue_.front());
+    queue_.pop_front();
+    room_.notify_one();
+    if (failed_) continue;  // drop the rest: Append reports the failure
+    lock.unlock();
+    const bool ok = WriteAndSync(line);
+    lock.lock();
+    if (!ok) failed_ = true, room_.notify_all();
+  }
+}
+
+// One line with its newline in one write (retried only on a short write), then fsync.
+bool SyncedLines::WriteAndSync(const std::string& line) {
   const std::string whole = line + "\n";
+  std::string why;
   for (size_t done = 0; done < whole.size();) {
     const ssize_t n = ::write(fd_, whole.data() + done, whole.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
-      *error = std::string("writing the output failed: ") + std::strerror(n < 0 ? errno : EIO);
-      return false;
+      why = std::string("writing the output failed: ") + std::strerror(n < 0 ? errno : EIO);
+      break;
     }
     done += static_cast<size_t>(n);
   }
-  if (::fsync(fd_) != 0 && errno != EINVAL) {  // EINVAL: a pipe or device, nothing to sync
-    *error = std::string("syncing the output failed: ") + std::strerror(errno);
-    return false;
-  }
-  return true;
+  if (why.empty() && ::fsync(fd_) != 0 && errno != EINVAL)  // EINVAL: a pipe or device, nothing to sync
+    why = std::string("syncing the output failed: ") + std::strerror(errno);
+  if (why.empty()) return true;
+  std::lock_guard<std::mutex> lock(mutex_);
+  error_ = why;
+  return false;
 }
 
 }  // namespace mechkin

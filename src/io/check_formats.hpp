@@ -5,9 +5,13 @@
 // All from the typed FileCheck (analysis/check_file.hpp).
 #pragma once
 
+#include <condition_variable>
+#include <deque>
 #include <map>
+#include <mutex>
 #include <ostream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "analysis/check_file.hpp"
@@ -32,8 +36,9 @@ struct CheckLines {
 /// when a complete line is not a check result.
 bool ReadCheckLines(const std::string& path, CheckLines* lines, std::string* error);
 
-/// An output opened for appending lines, each written whole and synced (fsync) to
-/// the disk before Append returns, so a killed run loses no line it reported.
+/// An output opened for appending lines, each written whole (one write) and synced
+/// (fsync) to the disk before the next, so a killed run loses no line written. The
+/// writes happen on a thread of their own: the checks do not wait for the disk.
 class SyncedLines {
  public:
   SyncedLines() = default;
@@ -42,11 +47,22 @@ class SyncedLines {
   ~SyncedLines();
   /// Opens (creates) `path`, keeping its first `keep_bytes` bytes (the rest is cut).
   bool Open(const std::string& path, size_t keep_bytes, std::string* error);
-  /// Writes `line` and a newline, then fsync; false with *error on any failure.
-  bool Append(const std::string& line, std::string* error);
+  /// Queues `line` (a newline is added); false with *error once a write has failed.
+  bool Append(std::string line, std::string* error);
+  /// Waits until every queued line is written and synced; false with *error otherwise.
+  bool Close(std::string* error);
 
  private:
+  void Work();
+  bool WriteAndSync(const std::string& line);
+
   int fd_ = -1;
+  std::mutex mutex_;
+  std::condition_variable ready_, room_;
+  std::deque<std::string> queue_;
+  bool closing_ = false, failed_ = false;
+  std::string error_;
+  std::thread worker_;
 };
 
 }  // namespace mechkin

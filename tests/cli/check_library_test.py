@@ -242,7 +242,14 @@ def sarif_and_gcc(exe, tmp):
 
 def refusals(exe, files, tmp):
     out = os.path.join(tmp, "x.jsonl")
-    for args in (["-o", out, files[0]], ["--format", "jsonl", "--resume", files[0]], ["--shard", "4/3", files[0]],
+    full = run(exe, "--format", "jsonl", "-o", "/dev/full", *files)
+    check(full.returncode == 1 and "writing the output failed: No space left on device" in full.stderr,
+          "a full output fails the run: %d %r" % (full.returncode, full.stderr))
+    dash = run(exe, "--format", "jsonl", "-o", "-", files[0])
+    check(dash.returncode == 0 and json.loads(dash.stdout)["verdict"] == "ok" and not os.path.exists("-"),
+          "-o - writes the standard output")
+    for args in (["-o", out, files[0]], ["--format", "jsonl", "--resume", files[0]],
+                 ["--format", "jsonl", "-o", "-", "--resume", files[0]], ["--shard", "4/3", files[0]],
                  ["--shard", "1/0", files[0]], ["--files-from", os.path.join(tmp, "missing.txt")], []):
         r = run(exe, *args)
         check(r.returncode == 2, "check %s exits 2, not %d" % (" ".join(args), r.returncode))

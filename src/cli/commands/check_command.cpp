@@ -67,12 +67,15 @@ class CheckSink {
     if (!kept_.empty()) kept_[index] = std::move(c);
     return true;
   }
-  void Finish() {
+  /// The reports kept for the end, written; false (with *error) when OUT's lines failed.
+  bool Finish(std::string* error) {
+    if (lines_ && !lines_->Close(error)) return false;
     if (format_ == "sarif") out_ << CheckSarifText(kept_) << "\n";
-    if (format_ != "json") return;
+    if (format_ != "json") return true;
     std::vector<CheckReport> reports;
     for (FileCheck& c : kept_) reports.push_back(std::move(c.report));
     out_ << CheckReportsJsonText(reports) << "\n";
+    return true;
   }
 
  private:
@@ -105,14 +108,15 @@ int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) 
   if (!PlanCheck(options, &plan, err)) return 2;
   CheckSink sink(options, plan.files.size(), out);
   std::string error;
-  if (!options.output.empty() && !sink.OpenOutput(options.output, plan.keep_bytes, &error)) {
+  const bool to_file = !options.output.empty() && options.output != "-";  // "-o -": the standard output
+  if (to_file && !sink.OpenOutput(options.output, plan.keep_bytes, &error)) {
     err << "mechkin check: " << error << "\n";
     return 1;
   }
   CheckTally tally(plan);
   // On a terminal only (a redirected or captured stderr gets the summary alone), and
   // not over reports written to that terminal.
-  const bool reports_on_terminal = options.output.empty() && &out == &std::cout && ::isatty(STDOUT_FILENO);
+  const bool reports_on_terminal = !to_file && &out == &std::cout && ::isatty(STDOUT_FILENO);
   CheckProgress progress(&err == &std::cerr && ::isatty(STDERR_FILENO) && !reports_on_terminal && !options.quiet &&
                              plan.files.size() > 1,
                          plan.files.size(), err);
@@ -127,7 +131,7 @@ int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) 
                return false;
              });
   progress.Finish();
-  sink.Finish();
+  write_failed = !sink.Finish(&error) || write_failed;
   if (write_failed) err << "mechkin check: " << error << "\n";
   if (plan.summary && !options.quiet) tally.PrintSummary(options.jobs, err);
   return write_failed ? 1 : tally.ExitCode();

@@ -60,7 +60,7 @@ bool CheckOutputOptions(const CheckOptions& o, std::ostream& err) {
     err << "mechkin check: -o writes JSON lines: add --format jsonl (or redirect the standard output)\n";
     return false;
   }
-  if (o.resume && o.output.empty()) {
+  if (o.resume && (o.output.empty() || o.output == "-")) {
     err << "mechkin check: --resume reads the output of an earlier run: give it with -o OUT\n";
     return false;
   }
