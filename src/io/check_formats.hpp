@@ -36,9 +36,10 @@ struct CheckLines {
 /// when a complete line is not a check result.
 bool ReadCheckLines(const std::string& path, CheckLines* lines, std::string* error);
 
-/// An output opened for appending lines, each written whole (one write) and synced
-/// (fsync) to the disk before the next, so a killed run loses no line written. The
-/// writes happen on a thread of their own: the checks do not wait for the disk.
+/// An output opened for appending lines, each written whole and synced (fsync) to the
+/// disk, so a killed run loses no line written. The writes happen on a thread of their
+/// own (the checks do not wait for the disk); the lines queued while one sync runs are
+/// written together and synced by the next (one fsync for them all).
 class SyncedLines {
  public:
   SyncedLines() = default;
@@ -54,7 +55,7 @@ class SyncedLines {
 
  private:
   void Work();
-  bool WriteAndSync(const std::string& line);
+  bool WriteAndSync(const std::string& whole);
 
   int fd_ = -1;
   std::mutex mutex_;
