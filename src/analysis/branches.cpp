@@ -22,7 +22,7 @@ bool AxesAsDrawn(const Model& m, const SystemState& s) {
 
 }  // namespace
 
-BranchCount CountBranches(const Model& model, int restarts, unsigned long seed) {
+BranchCount CountBranches(const Model& model, int restarts, unsigned long seed, const std::function<bool()>& stop) {
   BranchCount out;
   if (model.num_bodies() > 200 || model.num_bodies() == 0) return out;
   const ConstraintSystem sys(model, true);
@@ -38,7 +38,8 @@ BranchCount CountBranches(const Model& model, int restarts, unsigned long seed) 
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const double L = model.characteristic_length;
   const std::vector<int> rows = AllRows(sys);
-  for (int k = 0; k < restarts; ++k) {
+  int tried = 0;
+  for (; tried < restarts && !(stop && stop()); ++tried) {
     SystemState s = design;
     for (auto& b : s.bodies) {
       const Vec3 move(unit(rng), unit(rng), unit(rng)), axis(unit(rng), unit(rng), unit(rng));
@@ -52,7 +53,7 @@ BranchCount CountBranches(const Model& model, int restarts, unsigned long seed) 
     for (const auto& f : found) known = known || PoseDistance(f, s, L) < 1e-6;
     if (!known) found.push_back(s);
   }
-  out.restarts = restarts;
+  out.restarts = tried;
   out.branches = static_cast<int>(found.size());
   for (const auto& f : found) out.distances.push_back(PoseDistance(f, design, L));
   return out;

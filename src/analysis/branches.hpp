@@ -7,6 +7,7 @@
 // not counted.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "model/model.hpp"
@@ -22,6 +23,9 @@ struct BranchCount {
 
 /// `restarts` random starts (bodies moved up to the mechanism's size and turned
 /// up to 180°), seeded. Dense models only (up to 200 bodies); else branches = 0.
-BranchCount CountBranches(const Model& model, int restarts, unsigned long seed = 1);
+/// `stop` (when set) is asked before each restart: true ends the count there
+/// (restarts then says how many were tried).
+BranchCount CountBranches(const Model& model, int restarts, unsigned long seed = 1,
+                          const std::function<bool()>& stop = {});
 
 }  // namespace mechkin

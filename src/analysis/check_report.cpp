@@ -134,7 +134,13 @@ void WarnLimitsAtDesignPose(const Model& m, CheckReport* r) {
 
 }  // namespace
 
-CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
+void StopPoint(const InterruptPoll& stop, const char* stage) {
+  if (stop && stop()) throw CheckStopped{stage};
+}
+
+CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) { return CheckLoaded(file, loaded, {}); }
+
+CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded, const InterruptPoll& stop) {
   CheckReport r;
   r.file = file;
   r.errors = loaded.errors;
@@ -157,7 +163,9 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   for (const auto& j : m.joints) r.joint_equations += j.type->Rows();
   r.dof_after_drivers_count = r.grubler - r.drivers;
   r.planar = FindPlanarStructure(m);
+  StopPoint(stop, "the counts");
   r.mobility = CalcMobility(m);
+  StopPoint(stop, "the mobility analysis (the rank of the joint equations)");
   if (r.mobility->singular_lost > 0)
     r.warnings.push_back({"/drivers",
                           "the design pose is a singular position of the driven mechanism: the drivers control " +
@@ -167,7 +175,8 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded) {
   if (r.mobility->locked)
     r.warnings.push_back({"/joints", r.mobility->verdict, "fix the joints before adding or removing drivers"});
   AddExpectations(m, &r);
-  if (m.expect.min_clearance) AddClearanceCheck(m, &r);
+  if (m.expect.min_clearance) AddClearanceCheck(m, &r, stop);
+  StopPoint(stop, "the clearance sweep");
   AddGeometry(m, &r);
   AddAssembly(m, &r);
   WarnLimitsAtDesignPose(m, &r);

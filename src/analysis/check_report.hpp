@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/branches.hpp"
+#include "analysis/kinematic_analysis.hpp"
 #include "mobility/grubler.hpp"
 #include "mobility/mobility.hpp"
 #include "analysis/load.hpp"
@@ -94,10 +95,20 @@ struct CheckReport {
 };
 
 /// Sweeps the clearances into r->clearance and checks expect min_clearance
-/// (analysis/clearance_sweep.cpp).
-void AddClearanceCheck(const Model& m, CheckReport* r);
+/// (analysis/clearance_sweep.cpp); `stop` is polled every step (true: the sweep ends).
+void AddClearanceCheck(const Model& m, CheckReport* r, const InterruptPoll& stop = {});
 /// Checks one loaded file (never throws for bad input).
 CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded);
+/// Thrown by the stoppable check (CheckLoaded with a poll, analysis/check_file.hpp)
+/// when its poll turns true: the stage it was in ("the mobility analysis", ...).
+struct CheckStopped {
+  const char* stage;
+};
+/// As above, asking `stop` between the check's stages (and every step of a clearance
+/// sweep): true abandons the check with CheckStopped.
+CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded, const InterruptPoll& stop);
+/// Throws CheckStopped{stage} when `stop` is set and returns true.
+void StopPoint(const InterruptPoll& stop, const char* stage);
 /// Reads and checks one file.
 CheckReport CheckFile(const std::string& path);
 

@@ -85,9 +85,11 @@ std::string ClearanceWhere(const Model& model, const ClearanceMinimum& m) {
 
 // `expect: {"min_clearance"}` and `check --clearance`: the sweep, and the expectation
 // held when the tightest pair keeps at least the clearance asked.
-void AddClearanceCheck(const Model& m, CheckReport* r) {
+void AddClearanceCheck(const Model& m, CheckReport* r, const InterruptPoll& stop) {
   if (!r->valid || !m.analysis) return;
-  const ClearanceSweep sweep = SweepClearance(m, AnalysisOptions{});
+  AnalysisOptions options;
+  options.interrupted = stop;
+  const ClearanceSweep sweep = SweepClearance(m, options);
   r->clearance = ClearanceSection{};
   ClearanceSection& c = *r->clearance;
   const double L = 1 / m.units.length_to_si;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/check_file.hpp"
 #include "analysis/kinematic_analysis.hpp"
 #include "analysis/motion.hpp"
 #include "analysis/run_request.hpp"
@@ -19,6 +20,9 @@ namespace mechkin {
 enum class TableFormat { Csv, Json };
 /// Format of a report (`check`, `range`, `tolerance --format`).
 enum class ReportFormat { Text, Json };
+/// Format of `check --format`: the reports, plus the forms for many files and for CI
+/// (JSON lines, SARIF 2.1.0, compiler-style `file:line:col: error: ...` lines).
+enum class CheckFormat { Text, Json, Jsonl, Sarif, Gcc };
 
 template <typename E>
 struct EnumName {
@@ -46,6 +50,23 @@ struct EnumNames<TableFormat> {
 template <>
 struct EnumNames<ReportFormat> {
   static constexpr EnumName<ReportFormat> kAll[] = {{ReportFormat::Text, "text"}, {ReportFormat::Json, "json"}};
+};
+template <>
+struct EnumNames<CheckFormat> {
+  static constexpr EnumName<CheckFormat> kAll[] = {{CheckFormat::Text, "text"},
+                                                   {CheckFormat::Json, "json"},
+                                                   {CheckFormat::Jsonl, "jsonl"},
+                                                   {CheckFormat::Sarif, "sarif"},
+                                                   {CheckFormat::Gcc, "gcc"}};
+};
+// A checked file's verdict (`check --format jsonl`, the summary).
+template <>
+struct EnumNames<CheckVerdict> {
+  static constexpr EnumName<CheckVerdict> kAll[] = {{CheckVerdict::Ok, "ok"},
+                                                    {CheckVerdict::Failed, "failed"},
+                                                    {CheckVerdict::Invalid, "invalid"},
+                                                    {CheckVerdict::Timeout, "timeout"},
+                                                    {CheckVerdict::Error, "error"}};
 };
 // Why a run ended (Python's RunStop.kind, pickled motions).
 template <>

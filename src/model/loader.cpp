@@ -61,11 +61,10 @@ LoadResult WithParametersUnassembled(const Model& model, const ParameterOverride
   return Compile(model.spec, merged, model.expressions);
 }
 
-LoadResult LoadFileUnassembled(const std::string& path, const ParameterOverrides& overrides) {
-  LoadResult result;
+bool ReadMechanismFileText(const std::string& path, std::string* text, Diagnostic* error) {
   auto fail = [&](const std::string& msg, const std::string& fix) {
-    result.errors.push_back({"", msg, fix});
-    return result;
+    *error = Diagnostic{"", msg, fix};
+    return false;
   };
   const bool standard_input = path == "-";
   struct stat st {};
@@ -81,11 +80,24 @@ LoadResult LoadFileUnassembled(const std::string& path, const ParameterOverrides
   const int fd = standard_input ? 0 : ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) return fail("cannot open '" + path + "': " + std::strerror(errno), "check the path and permissions");
   if (!standard_input) ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
-  std::string text, why;
-  const bool ok = ReadStream(fd, &text, &why, 10000);
+  std::string why;
+  const bool ok = ReadStream(fd, text, &why, 10000);
   if (!standard_input) ::close(fd);
   if (!ok) return fail("cannot read '" + path + "': " + why, "give a complete mechanism JSON file");
-  return LoadTextUnassembled(text, standard_input ? "<stdin>" : path, overrides);
+  return true;
 }
+
+LoadResult LoadFileUnassembled(const std::string& path, const ParameterOverrides& overrides) {
+  std::string text;
+  Diagnostic error;
+  if (!ReadMechanismFileText(path, &text, &error)) {
+    LoadResult result;
+    result.errors.push_back(error);
+    return result;
+  }
+  return LoadTextUnassembled(text, MechanismSourceName(path), overrides);
+}
+
+std::string MechanismSourceName(const std::string& path) { return path == "-" ? "<stdin>" : path; }
 
 }  // namespace mechkin

@@ -22,6 +22,12 @@ namespace mechkin {
 /// Largest file the loader reads (bytes).
 constexpr std::size_t kMaxFileBytes = 256u << 20;
 
+/// The text of a mechanism file ("-": the standard input) as the loader reads it:
+/// regular files up to kMaxFileBytes, streams with a 10 s silence limit; false with
+/// *error (no pointer) for a path that cannot be read.
+bool ReadMechanismFileText(const std::string& path, std::string* text, Diagnostic* error);
+/// The source name the loader gives a path's model ("-": "<stdin>").
+std::string MechanismSourceName(const std::string& path);
 LoadResult LoadFileUnassembled(const std::string& path, const ParameterOverrides& overrides = {});
 LoadResult LoadTextUnassembled(const std::string& text, const std::string& source_name,
                              const ParameterOverrides& overrides = {});

@@ -14,6 +14,9 @@ struct Diagnostic {
   std::string pointer;  // JSON pointer ("" = the whole file), e.g. "/joints/3/axis"
   std::string message;  // what is wrong
   std::string fix;      // how to fix it (may be empty)
+  // Where the pointer is in the file's text (spec/text_position.hpp), 1-based; column
+  // in Unicode code points. 0: not located (no pointer, no text, or not yet located).
+  int line = 0, column = 0;
   std::string ToString() const;
 };
 

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "spec/json_reader.hpp"
+#include "spec/text_position.hpp"
 
 namespace mechkin::spec_reader {
 
@@ -95,6 +96,14 @@ size_t TooDeepAt(const std::string& text) {
   return std::string::npos;
 }
 
+// The error just reported is at byte `at` of the text (its line and column fields).
+void PlaceLastError(const std::string& text, size_t at, JsonReader& rd) {
+  Diagnostic& d = rd.diagnostics().errors.back();
+  const TextPosition p = PositionOfByte(text, at);
+  d.line = p.line;
+  d.column = p.column;
+}
+
 }  // namespace
 
 bool ParseJson(const std::string& text, JsonReader& rd, json* doc_out) {
@@ -103,6 +112,7 @@ bool ParseJson(const std::string& text, JsonReader& rd, json* doc_out) {
     rd.Error("", "the JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels of '[' and '{' at " +
                      LineAndColumn(text, at),
              "a mechanism file needs a few levels: close the brackets left open before this point");
+    PlaceLastError(text, at, rd);
     return false;
   }
   try {
@@ -118,6 +128,7 @@ bool ParseJson(const std::string& text, JsonReader& rd, json* doc_out) {
     if (pos != std::string::npos) what = what.substr(pos);
     rd.Error("", "JSON syntax error at " + LineAndColumn(text, end) + ": " + what,
              text.empty() ? "the file is empty; start from a file in mechanisms/" : "fix the JSON syntax");
+    PlaceLastError(text, end, rd);
     return false;
   } catch (const json::out_of_range& e) {
     // nlohmann reports overflowing numbers (1e999) without a position: find the token.
