@@ -1,10 +1,12 @@
 #include "analysis/clearance.hpp"
 
+#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
@@ -32,6 +34,22 @@ fcl::Transform3d ShapeFrame(const Shape& sh) {
   return T;
 }
 
+// A mesh (constraints.md §13) as FCL's bounding-volume hierarchy of its triangles (oriented boxes and
+// swept spheres: FCL's distance queries need an oriented volume). Its distance is the
+// surface's: exact between triangles, GJK between a triangle and a primitive.
+std::shared_ptr<fcl::CollisionGeometryd> MakeMesh(const Shape& sh) {
+  auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  std::vector<fcl::Vector3d> vertices(sh.points.begin(), sh.points.end());
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(sh.triangles.size());
+  for (const auto& t : sh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
+  bvh->addSubModel(vertices, triangles);
+  bvh->endModel();
+  bvh->computeLocalAABB();
+  return bvh;
+}
+
 // The FCL shape and its reach about its own frame's origin.
 std::shared_ptr<fcl::CollisionGeometryd> MakeShape(const Shape& sh, double* reach) {
   switch (sh.kind) {
@@ -48,10 +66,12 @@ std::shared_ptr<fcl::CollisionGeometryd> MakeShape(const Shape& sh, double* reac
       *reach = sh.radius + 0.5 * sh.length;
       return std::make_shared<fcl::Capsuled>(sh.radius, sh.length);
     case Shape::Kind::Convex:
+    case Shape::Kind::Mesh:
       break;
   }
   *reach = 0;
   for (const Vec3& p : sh.points) *reach = std::max(*reach, p.norm());
+  if (sh.kind == Shape::Kind::Mesh) return MakeMesh(sh);
   auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(sh.points.begin(), sh.points.end());
   auto faces = std::make_shared<std::vector<int>>(sh.faces);
   return std::make_shared<fcl::Convexd>(vertices, sh.num_faces, faces);
