@@ -235,7 +235,7 @@ std::vector<int> ColumnsOfSubjects(const Model& model, const Motion& m, const st
   std::vector<int> all, varying;
   for (int c = 1; c < m.cols(); ++c) {
     const ColumnDescriptor& d = m.columns()[c];
-    if (!Plottable(d) || d.order != 0 || d.IsDiagnostic()) continue;
+    if (!Plottable(d) || d.order != 0 || d.IsDiagnostic() || d.quantity == Quantity::ClearancePoint) continue;
     if (bodies != (d.quantity == Quantity::BodyPosition)) continue;
     if (std::find(names.begin(), names.end(), d.subject) == names.end()) continue;
     all.push_back(c);
