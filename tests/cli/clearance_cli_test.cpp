@@ -78,7 +78,7 @@ TEST(ClearanceCli, MalformedShapesAndUnknownBodiesNamePointerMessageAndFix) {
       {"shape-negative-radius.json", "/bodies/0/shape/radius: 'radius' must be a positive number", "units/length"},
       {"convex-three-points.json", "/bodies/1/shapes/1/points: a convex shape needs at least 4 points, not 3",
        "4 or more corners"},
-      {"shape-unknown-kind.json", "/bodies/2/shape/type: unknown shape 'cone'", "use box, cylinder, sphere, capsule or convex"},
+      {"shape-unknown-kind.json", "/bodies/2/shape/type: unknown shape 'cone'", "use box, cylinder, sphere, capsule, convex or mesh"},
       {"clearance-unknown-body.json", "/outputs/1/body2: unknown body 'slidr'", "did you mean 'slider'?"}};
   for (const Case& c : cases) {
     const auto r = RunCli("check " + dir + c.file);
