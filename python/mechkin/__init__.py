@@ -24,7 +24,7 @@ from . import _mechkin
 from .builder import Mechanism
 
 __all__ = ["load", "loads", "Mechanism", "Model", "Motion", "RunRequest", "CheckReport", "MobilityReport", "RangeReport",
-           "ToleranceReport", "FormatError", "Diagnostic", "RunStop", "sweep"]
+           "ToleranceReport", "FormatError", "Diagnostic", "RunStop", "Contact", "sweep"]
 
 RunRequest = _mechkin.RunRequest
 CheckReport = _mechkin.CheckReport
@@ -199,7 +199,7 @@ class Model:
 
     def run(self, order=3, tol=1e-10, solver="newton", formulation="omega", bodies=None, outputs=None,
             si=False, start=None, end=None, steps=None, forces=None, sensitivity=None, on_limit="stop",
-            request=None):
+            on_contact="report", request=None):
         """The driven kinematic analysis, like `mechkin run`. Returns a Motion; a run
         that stops early returns the rows computed with motion.complete False and
         motion.stop saying why.
@@ -211,13 +211,17 @@ class Model:
         sensitivity (parameter names: d(column)/d(parameter) columns), on_limit
         ('stop': a joint reaching its limits ends the run there, motion.stop.kind
         'joint_limit' naming the joint; 'report': noted in motion.notes and the run
-        goes on; `run --on-limit`). Out-of-range values raise ValueError with the
+        goes on; `run --on-limit`), on_contact ('report': a first contact of a
+        clearance output's bodies is located and the run goes on; 'stop': the run
+        ends there, motion.stop.kind 'contact'; either way motion.contacts lists
+        them; `run --on-contact`). Out-of-range values raise ValueError with the
         CLI's message. start, end, steps replace the file's analysis span."""
         if request is None:
             norm = lambda sel: None if sel is None else ([sel] if isinstance(sel, str) else list(sel))
             request = RunRequest(order=int(order), tol=float(tol), solver=solver, formulation=formulation,
                                  bodies=norm(bodies), outputs=norm(outputs), si=bool(si), forces=forces,
-                                 sensitivity=norm(sensitivity) or [], on_limit=on_limit)
+                                 sensitivity=norm(sensitivity) or [], on_limit=on_limit,
+                                 on_contact=on_contact)
         core = self._core.run(request, start, end, steps)
         return Motion(self, core, dict(order=request.order, si=request.si, bodies=request.bodies,
                                        outputs=request.outputs, forces=core.forces,
@@ -232,7 +236,8 @@ class Model:
 
 class RunStop:
     """Why a run ended early. Fields: kind ('refused', 'assembly_failed',
-    'singular_position', 'solve_failed', 'interrupted'; 'none' for a complete run),
+    'singular_position', 'solve_failed', 'interrupted', 'joint_limit', 'contact';
+    'none' for a complete run),
     message (the CLI's explanation), singular (dict(t, driver_values, joint_mobility,
     involved) or None), limit (where a position solve failed: dict(t, driver_values
     in SI, fold) or None). False for a complete run."""
@@ -249,6 +254,31 @@ class RunStop:
 
     def __repr__(self):
         return "RunStop(%r, %r)" % (self.kind, self.message.split("\n")[0])
+
+
+class Contact:
+    """A first contact of a clearance output's bodies, located on the exact motion
+    (`run --on-contact`): t (s), output (the clearance output's name), body1, body2,
+    point (numpy [x, y, z], global, the motion's length unit: between the closest
+    points at t), driver_values (SI, at t), at_start (True: already touching on the
+    first row, not located; then clearance is the (negative) clearance there)."""
+
+    def __init__(self, d):
+        self.t = d["t"]
+        self.output = d["output"]
+        self.body1, self.body2 = d["body1"], d["body2"]
+        self.point = _np.array(d["point"])
+        self.driver_values = list(d["driver_values"])
+        self.at_start = d["at_start"]
+        self.clearance = d["clearance"]
+
+    @property
+    def bodies(self):
+        """(body1, body2)"""
+        return (self.body1, self.body2)
+
+    def __repr__(self):
+        return "Contact(t=%.12g, bodies=%r, point=%s)" % (self.t, self.bodies, list(self.point))
 
 
 class _Series:
@@ -287,6 +317,7 @@ class Motion:
     units() and not repeated in the names.
 
     Access: motion[name], body(name).position(order), effort(driver),
+    clearance(output), closest_points(output), contacts (first contacts),
     power(driver), reaction(joint), sensitivity(column, parameter) — views into
     values (no copies); to_pandas(), to_csv(path), to_json(path). Motions pickle."""
 
@@ -307,6 +338,10 @@ class Motion:
     reselections = property(lambda self: list(self._report.get("reselections", [])),
                             doc="[(t, equations set aside from t on)]: redundancy that follows the motion")
     names = property(lambda self: [c["name"] for c in self.columns], doc="column names (units in units())")
+    contacts = property(lambda self: [Contact(c) for c in self._report.get("contacts", [])],
+                        doc="[Contact]: first contacts of clearance outputs' bodies, earliest first")
+    first_contact = property(lambda self: next(iter(self.contacts), None),
+                             doc="the earliest Contact, or None")
     t = property(lambda self: self.values[:, 0], doc="time of each row, s")
 
     def __len__(self):
@@ -387,6 +422,21 @@ class Motion:
             raise KeyError("no %s of driver %r at order %d in this motion (run with forces=True)"
                            % (quantity.replace("driver_", ""), driver, order))
         return self.values[:, k]
+
+    def clearance(self, output, order=0):
+        """A clearance output's smallest distance between its bodies' shapes per row
+        (negative: penetration depth); order 1: its rate. The motion's length unit."""
+        k = self._find("clearance", output, -1, order)
+        if k is None:
+            raise KeyError("no clearance %r of order %d in this motion" % (output, order))
+        return self.values[:, k]
+
+    def closest_points(self, output):
+        """(point1, point2): the closest points on body1's and body2's shapes, rows × 3 each (global)."""
+        cols = [self._find("clearance_point", output, c, 0) for c in range(6)]
+        if None in cols:
+            raise KeyError("no clearance %r in this motion" % output)
+        return self._strided(cols[:3]), self._strided(cols[3:])
 
     def reaction(self, joint, frame="global", order=0):
         """(force, moment) that body1 exerts on body2 at the joint origin, rows × 3 each:

@@ -279,6 +279,23 @@ py::dict Report(const PyMotion& pm) {
   } else {
     d["limit"] = py::none();
   }
+  // First contacts of clearance outputs' bodies (analysis/contact_watch.hpp): the point
+  // in the table's length unit, the driver values in SI (as the limit's).
+  py::list contacts;
+  for (const ContactHit& h : m.report.contacts) {
+    py::dict c;
+    c["t"] = h.t;
+    c["output"] = h.output >= 0 ? py::object(py::str(pm.model->outputs[h.output].name)) : py::object(py::none());
+    c["body1"] = pm.model->BodyName(h.body1);
+    c["body2"] = pm.model->BodyName(h.body2);
+    const double len = m.layout().length_factor();
+    c["point"] = std::vector<double>{h.point.x() * len, h.point.y() * len, h.point.z() * len};
+    c["clearance"] = h.clearance * len;
+    c["at_start"] = h.at_start;
+    c["driver_values"] = h.driver_values;
+    contacts.append(c);
+  }
+  d["contacts"] = contacts;
   py::list reselections;
   for (const auto& r : m.report.reselections) reselections.append(py::make_tuple(r.t, r.set_aside));
   d["reselections"] = reselections;

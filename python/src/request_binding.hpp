@@ -47,7 +47,8 @@ inline mechkin::RunRequest MakeRequest(int order, double tol, const std::string&
                                        std::optional<std::vector<std::string>> bodies,
                                        std::optional<std::vector<std::string>> outputs, bool si,
                                        std::optional<bool> forces, std::vector<std::string> sensitivity,
-                                       int max_iterations, const std::string& on_limit) {
+                                       int max_iterations, const std::string& on_limit,
+                                       const std::string& on_contact) {
   mechkin::RunRequest r;
   r.order = order;
   r.tolerance = tol;
@@ -60,6 +61,7 @@ inline mechkin::RunRequest MakeRequest(int order, double tol, const std::string&
   r.sensitivity = std::move(sensitivity);
   r.max_iterations = max_iterations;
   r.set_limit_action(NamedOrThrow<mechkin::LimitAction>("on_limit", on_limit));
+  r.set_contact_action(NamedOrThrow<mechkin::ContactAction>("on_contact", on_contact));
   return r;
 }
 
@@ -77,7 +79,7 @@ inline std::string RequestRepr(const mechkin::RunRequest& r) {
          "', formulation='" + mechkin::ToString(r.formulation) + "', bodies=" + names(r.bodies) +
          ", outputs=" + names(r.outputs) + ", si=" + (r.si ? "True" : "False") + ", forces=" + forces +
          ", sensitivity=" + names(std::optional<std::vector<std::string>>(r.sensitivity)) + ", on_limit='" +
-         mechkin::ToString(r.limit_action()) + "')";
+         mechkin::ToString(r.limit_action()) + "', on_contact='" + mechkin::ToString(r.contact_action()) + "')";
 }
 
 inline void BindRunRequest(py::module_& mod) {
@@ -93,11 +95,13 @@ formulation='omega' ('p'), bodies=None / outputs=None (None: every one; a list
 selects), si=False (SI units instead of the file's), forces=None (None: when the
 file has inertia or loads), sensitivity=[] (parameter names), max_iterations=25,
 on_limit='stop' ('report': a joint reaching its limits is noted and the run goes on;
-the CLI's --on-limit).)doc")
+the CLI's --on-limit), on_contact='report' ('stop': the run ends at the first contact of
+a clearance output's bodies; the CLI's --on-contact).)doc")
       .def(py::init(&MakeRequest), py::arg("order") = 3, py::arg("tol") = 1e-10, py::arg("solver") = "newton",
            py::arg("formulation") = "omega", py::arg("bodies") = py::none(), py::arg("outputs") = py::none(),
            py::arg("si") = false, py::arg("forces") = py::none(), py::arg("sensitivity") = std::vector<std::string>{},
-           py::arg("max_iterations") = 25, py::arg("on_limit") = "stop")
+           py::arg("max_iterations") = 25, py::arg("on_limit") = "stop",
+           py::arg("on_contact") = "report")
       .def_readwrite("order", &RunRequest::order, "highest time derivative shown: 0 position ... 4 snap")
       .def_readwrite("tol", &RunRequest::tolerance, "position tolerance relative to the mechanism size, 1e-15 ... 1e-3")
       .def_property(
@@ -124,6 +128,13 @@ the CLI's --on-limit).)doc")
           },
           "at a joint's limits: 'stop' (the crossing located, motion.stop.kind 'joint_limit') or 'report' "
           "(noted in motion.notes, the run goes on)")
+      .def_property(
+          "on_contact", [](const RunRequest& r) { return std::string(mechkin::ToString(r.contact_action())); },
+          [](RunRequest& r, const std::string& s) {
+            r.set_contact_action(NamedOrThrow<mechkin::ContactAction>("on_contact", s));
+          },
+          "at a first contact of a clearance output's bodies: 'report' (located, in motion.contacts; the run goes "
+          "on) or 'stop' (the run ends there, motion.stop.kind 'contact')")
       .def(
           "is_valid",
           [](const RunRequest& r) {

@@ -534,3 +534,60 @@ def test_a_probe_of_no_body_is_reported_and_the_page_still_loads(cli, tmp_path):
     assert attrs.get("data-ready") == "1", dom[-2000:]
     assert "#probe=99999: no body with that index" in attrs.get("data-errors", ""), attrs
     assert "data-probe" not in attrs
+
+
+# --- issue 28: clearance marks and contacts ----------------------------------------------------
+
+def _slider_past_mesh_box(tmp_path):
+    """A 20 mm box on a slider (given as an OBJ mesh of 6 quads) pushed at 100 mm/s towards
+    a fixed 20 mm box centred at x = 103.3 mm: the faces meet at t = 0.833 s."""
+    corners = [((k & 1) * 20 - 10, (k >> 1 & 1) * 20 - 10, (k >> 2 & 1) * 20 - 10) for k in range(8)]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    (tmp_path / "box.obj").write_text("".join("v %g %g %g\n" % c for c in corners) +
+                                      "".join("f %d %d %d %d\n" % tuple(i + 1 for i in q) for q in quads))
+    doc = {"mechkin": 1, "name": "slider past a box", "units": {"length": "mm", "angle": "deg"},
+           "ground": {"shapes": [{"type": "box", "size": [20, 20, 20], "center": [103.3, 0, 0]}]},
+           "bodies": [{"name": "slider", "position": [0, 0, 0], "shape": {"type": "mesh", "file": "box.obj"}}],
+           "joints": [{"name": "P", "type": "prismatic", "body1": "ground", "body2": "slider",
+                       "origin": [0, 0, 0], "axis": [1, 0, 0]}],
+           "drivers": [{"name": "push", "type": "translation", "joint": "P", "function": "100*t"}],
+           "analysis": {"start": 0, "end": 1, "steps": 100},
+           "outputs": [{"name": "gap", "type": "clearance", "body1": "slider", "body2": "ground"}]}
+    src = tmp_path / "slider.json"
+    src.write_text(json.dumps(doc))
+    return src
+
+
+def test_clearance_marks_are_the_closest_point_columns_and_contacts_turn_red(cli, tmp_path):
+    src = _slider_past_mesh_box(tmp_path)
+    page, table = tmp_path / "gap.html", tmp_path / "gap.csv"
+    assert view(cli, str(src), page).returncode == 0
+    subprocess.run([cli, "run", str(src), "-o", str(table)], check=True, capture_output=True)
+    rows = list(csv.reader(open(table)))
+    head, values = [h.split(" [")[0] for h in rows[0]], np.array([[float(x) for x in r] for r in rows[1:]])
+    cols = [head.index("gap.point%d.%s" % (p, a)) for p in (1, 2) for a in "xyz"]
+    data = page_data(page)
+    assert [s["type"] for s in data["bodies"][0]["shapes"]] == ["mesh"] and len(data["bodies"][0]["shapes"][0]["triangles"]) == 36
+    assert [s["type"] for s in data["ground_shapes"]] == ["box"]
+    for row in (0, 37, 50, 83):
+        t = values[row, 0]
+        attrs, dom = browser.dump_dom(page, "t=%r" % t)
+        assert attrs.get("data-ready") == "1" and "data-errors" not in attrs, attrs.get("data-errors")
+        name, marks = attrs["data-clearance"].split(":")
+        drawn = np.array([float(x) for x in marks.split(",")])
+        print("[measured] t = %g s: the page's marks off the table's closest points by %.2e mm" %
+              (t, np.abs(drawn - values[row, cols]).max()))
+        assert name == "gap" and np.abs(drawn - values[row, cols]).max() < 1e-9
+        assert attrs["data-contact"] == "" and attrs["data-red-bodies"] == ""
+        assert abs(float(attrs["data-first-contact"]) - 0.833) < 1e-9
+        assert "first contact of `slider` and `ground` at t = 0.833 s" in dom
+    # After the contact the two bodies' shapes are drawn red (ground −1, the slider 0):
+    # more red pixels in the 3D view than before it.
+    attrs, _ = browser.dump_dom(page, "t=0.9")
+    assert attrs["data-contact"] == "gap" and attrs["data-red-bodies"] == "-1,0"
+    def red(t):
+        img = pixels(browser.screenshot(page, tmp_path / ("r%s.png" % t), "t=%s&view=front" % t))[60:680, 0:690]
+        return ((img[..., 0] > img[..., 1] + 80) & (img[..., 0] > img[..., 2] + 80)).sum()
+    before, after = red("0.8"), red("0.9")
+    print("[measured] red pixels in the 3D view: %d before the contact, %d after" % (before, after))
+    assert after > before + 500

@@ -1,10 +1,12 @@
 #include "analysis/clearance.hpp"
 
+#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
@@ -18,6 +20,9 @@ namespace mechkin {
 struct ClearanceEvaluator::Geometry {
   std::vector<std::shared_ptr<fcl::CollisionGeometryd>> shapes;
   std::vector<fcl::Transform3d> in_body;  // each shape's frame in the body
+  // Each shape as measured against a mesh: a sphere as a capsule of length 0 (FCL's
+  // GJK; its sphere–triangle specialisation misreads contacts at edges), others as is.
+  std::vector<std::shared_ptr<fcl::CollisionGeometryd>> against_mesh;
   double reach = 0;
 };
 
@@ -30,6 +35,22 @@ fcl::Transform3d ShapeFrame(const Shape& sh) {
     T.linear() = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), sh.axis).toRotationMatrix();
   T.translation() = sh.center;
   return T;
+}
+
+// A mesh (constraints.md §13) as FCL's bounding-volume hierarchy of its triangles (oriented boxes and
+// swept spheres: FCL's distance queries need an oriented volume). Its distance is the
+// surface's: exact between triangles, GJK between a triangle and a primitive.
+std::shared_ptr<fcl::CollisionGeometryd> MakeMesh(const Shape& sh) {
+  auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  std::vector<fcl::Vector3d> vertices(sh.points.begin(), sh.points.end());
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(sh.triangles.size());
+  for (const auto& t : sh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
+  bvh->addSubModel(vertices, triangles);
+  bvh->endModel();
+  bvh->computeLocalAABB();
+  return bvh;
 }
 
 // The FCL shape and its reach about its own frame's origin.
@@ -48,10 +69,12 @@ std::shared_ptr<fcl::CollisionGeometryd> MakeShape(const Shape& sh, double* reac
       *reach = sh.radius + 0.5 * sh.length;
       return std::make_shared<fcl::Capsuled>(sh.radius, sh.length);
     case Shape::Kind::Convex:
+    case Shape::Kind::Mesh:
       break;
   }
   *reach = 0;
   for (const Vec3& p : sh.points) *reach = std::max(*reach, p.norm());
+  if (sh.kind == Shape::Kind::Mesh) return MakeMesh(sh);
   auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(sh.points.begin(), sh.points.end());
   auto faces = std::make_shared<std::vector<int>>(sh.faces);
   return std::make_shared<fcl::Convexd>(vertices, sh.num_faces, faces);
@@ -118,6 +141,8 @@ ClearanceEvaluator::ClearanceEvaluator(const Model& model, std::vector<Clearance
     for (const Shape* sh : ClearanceShapes(model, b == model.num_bodies() ? kGround : b)) {
       double reach = 0;
       g->shapes.push_back(MakeShape(*sh, &reach));
+      g->against_mesh.push_back(sh->kind == Shape::Kind::Sphere ? std::make_shared<fcl::Capsuled>(sh->radius, 0.0)
+                                                                : g->shapes.back());
       g->in_body.push_back(ShapeFrame(*sh));
       g->reach = std::max(g->reach, sh->center.norm() + reach);
     }
@@ -135,27 +160,55 @@ double ClearanceEvaluator::Reach(BodyIndex body) const { return Of(body).reach; 
 
 namespace {
 
-// One shape pair: GJK's distance and closest points (global) while apart; in
-// contact, minus the penetration depth from FCL's contact (analytic for spheres
-// and boxes, MPR otherwise), its witness points ∓ half the depth along the normal
-// (from shape 1 to shape 2). FCL's signed distance (EPA) is not used: it trips an
-// assertion of Debian's build on penetrating spheres.
-double ShapePairDistance(const fcl::CollisionGeometryd* a, const fcl::Transform3d& Ta,
-                         const fcl::CollisionGeometryd* b, const fcl::Transform3d& Tb, double tolerance, Vec3* pa,
-                         Vec3* pb) {
-  fcl::DistanceRequestd request(true, false, 0.0, 0.0, tolerance);
-  fcl::DistanceResultd result;
-  const double d = fcl::distance(a, Ta, b, Tb, request, result);
-  *pa = result.nearest_points[0];
-  *pb = result.nearest_points[1];
-  if (d > 0) return d;
+// In contact: minus the penetration depth from FCL's contact (analytic for spheres
+// and boxes, MPR otherwise; a mesh's: its crossing triangles'), its witness points ∓
+// half the depth along the normal (from shape 1 to shape 2); false when apart.
+bool ContactDistance(const fcl::CollisionGeometryd* a, const fcl::Transform3d& Ta, const fcl::CollisionGeometryd* b,
+                     const fcl::Transform3d& Tb, double* d, Vec3* pa, Vec3* pb) {
   fcl::CollisionRequestd touching(1, true);
   fcl::CollisionResultd contact;
-  if (fcl::collide(a, Ta, b, Tb, touching, contact) == 0) return 0;
+  if (fcl::collide(a, Ta, b, Tb, touching, contact) == 0) return false;
   const fcl::Contactd& c = contact.getContact(0);
   *pa = c.pos + 0.5 * c.penetration_depth * c.normal;
   *pb = c.pos - 0.5 * c.penetration_depth * c.normal;
-  return -c.penetration_depth;
+  *d = -c.penetration_depth;
+  return true;
+}
+
+// FCL's distance between a mesh and a sphere gives its nearest points in the two
+// shapes' own frames (Debian's FCL 0.7), its other pairs global: the pair whose gap
+// is the distance.
+void GlobalNearestPoints(const fcl::DistanceResultd& r, double d, const fcl::Transform3d& Ta,
+                         const fcl::Transform3d& Tb, Vec3* pa, Vec3* pb) {
+  *pa = r.nearest_points[0];
+  *pb = r.nearest_points[1];
+  const double slack = 1e-9 * std::max(d, (*pb - *pa).norm()) + 1e-300;
+  if (std::abs((*pb - *pa).norm() - d) <= slack) return;
+  const Vec3 qa = Ta * *pa, qb = Tb * *pb;
+  if (std::abs((qb - qa).norm() - d) <= std::abs((*pb - *pa).norm() - d)) *pa = qa, *pb = qb;
+}
+
+// One shape pair: GJK's distance and closest points (global) while apart, else the
+// contact's. FCL's signed distance (EPA) is not used: it trips an assertion of
+// Debian's build on penetrating spheres. A mesh goes first (FCL misses some contacts
+// of a sphere with a mesh's edge asked the other way round).
+double ShapePairDistance(const fcl::CollisionGeometryd* a, const fcl::Transform3d& Ta,
+                         const fcl::CollisionGeometryd* b, const fcl::Transform3d& Tb, double tolerance, Vec3* pa,
+                         Vec3* pb) {
+  if (b->getObjectType() == fcl::OT_BVH && a->getObjectType() != fcl::OT_BVH) {
+    const double d = ShapePairDistance(b, Tb, a, Ta, tolerance, pb, pa);
+    return d;
+  }
+  const bool mesh = a->getObjectType() == fcl::OT_BVH;
+  fcl::DistanceRequestd request(true, false, 0.0, 0.0, tolerance);
+  fcl::DistanceResultd result;
+  double d = fcl::distance(a, Ta, b, Tb, request, result);
+  if (mesh) GlobalNearestPoints(result, d, Ta, Tb, pa, pb);
+  else *pa = result.nearest_points[0], *pb = result.nearest_points[1];
+  // A mesh's distance within GJK's tolerance of 0 may be a crossing's unset value.
+  if (d > (mesh ? tolerance : 0.0)) return d;
+  if (!ContactDistance(a, Ta, b, Tb, &d, pa, pb)) return std::max(d, 0.0);
+  return d;
 }
 
 }  // namespace
@@ -173,8 +226,10 @@ ClearanceValue ClearanceEvaluator::Evaluate(const SystemState& s, int pair, bool
   Vec3 pa, pb;
   for (size_t a = 0; a < g1.shapes.size(); ++a)
     for (size_t b = 0; b < g2.shapes.size(); ++b) {
-      const double d = ShapePairDistance(g1.shapes[a].get(), T1 * g1.in_body[a], g2.shapes[b].get(),
-                                         T2 * g2.in_body[b], tolerance_, &pa, &pb);
+      const bool mesh1 = g1.shapes[a]->getObjectType() == fcl::OT_BVH, mesh2 = g2.shapes[b]->getObjectType() == fcl::OT_BVH;
+      const double d = ShapePairDistance((mesh2 ? g1.against_mesh : g1.shapes)[a].get(), T1 * g1.in_body[a],
+                                         (mesh1 ? g2.against_mesh : g2.shapes)[b].get(), T2 * g2.in_body[b], tolerance_,
+                                         &pa, &pb);
       if (!(d < best.distance)) continue;
       best.distance = d;
       best.point1 = pa;

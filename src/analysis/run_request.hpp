@@ -55,6 +55,8 @@ struct RunRequest {
   LimitAction limit_action() const { return on_limit_report ? LimitAction::Report : LimitAction::Stop; }
   void set_limit_action(LimitAction a) { on_limit_report = a == LimitAction::Report; }
   bool on_contact_stop = false;       // clearance outputs: stop at a first contact (default: note it)
+  ContactAction contact_action() const { return on_contact_stop ? ContactAction::Stop : ContactAction::Report; }
+  void set_contact_action(ContactAction a) { on_contact_stop = a == ContactAction::Stop; }
   InterruptPoll interrupted;          // polled between steps and runs: true stops (Interrupted)
 
   // The ranges (kMinTolerance, kMaxTolerance, order 0..kMaxOrder) and their messages are

@@ -94,21 +94,53 @@ BodyColumns ColumnsOf(const Motion& m, int b) {
   return {m.layout().Find(Quantity::BodyPosition, b, 0, 0), m.layout().Find(Quantity::EulerParameter, b, 0, 0)};
 }
 
-// The page draws boxes, cylinders and spheres: a capsule as the cylinder of its
-// whole length, a convex hull as its bounding box.
+// The page draws boxes, cylinders, spheres and triangles: a capsule as the cylinder
+// of its whole length, a convex hull as its faces (fans) and a mesh as its triangles.
 Shape DrawnShape(const Shape& sh) {
   Shape out = sh;
   if (sh.kind == Shape::Kind::Capsule) {
     out.kind = Shape::Kind::Cylinder;
     out.length = sh.length + 2 * sh.radius;
-  } else if (sh.kind == Shape::Kind::Convex && !sh.points.empty()) {
-    Vec3 lo = sh.points[0], hi = sh.points[0];
-    for (const Vec3& p : sh.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    out.kind = Shape::Kind::Box;
-    out.size = hi - lo;
-    out.center = sh.center + 0.5 * (lo + hi);
+  } else if (sh.kind == Shape::Kind::Convex) {
+    out.kind = Shape::Kind::Mesh;
+    for (size_t at = 0; at < sh.faces.size(); at += 1 + sh.faces[at])
+      for (int k = 2; k < sh.faces[at]; ++k)
+        out.triangles.push_back({sh.faces[at + 1], sh.faces[at + k], sh.faces[at + k + 1]});
   }
   return out;
+}
+
+// One shape of the page: {"type": "box" | "cylinder" | "sphere" | "mesh", its sizes,
+// "center", "axis"; a mesh's "positions" [x, y, z, …] and "triangles" [i, j, k, …]}.
+void WriteShape(const Shape& drawn, double L, Json* j) {
+  static const char* kKinds[] = {"box", "cylinder", "sphere", "capsule", "convex", "mesh"};
+  const Shape sh = DrawnShape(drawn);
+  j->Raw("{"), j->Key("type"), j->Str(kKinds[static_cast<int>(sh.kind)]), j->Raw(",");
+  j->Key("size"), j->Vec(sh.size, L), j->Raw(","), j->Key("radius"), j->Num(sh.radius * L), j->Raw(",");
+  j->Key("length"), j->Num(sh.length * L), j->Raw(","), j->Key("center"), j->Vec(sh.center, L), j->Raw(",");
+  j->Key("axis"), j->Vec(sh.axis, 1);
+  if (sh.kind == Shape::Kind::Mesh) {
+    j->Raw(","), j->Key("positions"), j->Raw("[");
+    for (size_t k = 0; k < sh.points.size(); ++k) {
+      for (int a = 0; a < 3; ++a) { if (k || a) j->Raw(","); j->Num(sh.points[k][a] * L); }
+    }
+    j->Raw("],"), j->Key("triangles"), j->Raw("[");
+    for (size_t k = 0; k < sh.triangles.size(); ++k)
+      for (int a = 0; a < 3; ++a) { if (k || a) j->Raw(","); j->Num(sh.triangles[k][a]); }
+    j->Raw("]");
+  }
+  j->Raw("}");
+}
+
+// A body's (or ground's) clearance shapes: its "shape", then its "shapes".
+void WriteShapes(const Model& model, BodyIndex b, const char* key, double L, Json* j) {
+  j->Key(key), j->Raw("[");
+  const std::vector<const Shape*> shapes = ClearanceShapes(model, b);
+  for (size_t k = 0; k < shapes.size(); ++k) {
+    if (k) j->Raw(",");
+    WriteShape(*shapes[k], L, j);
+  }
+  j->Raw("]");
 }
 
 double Col(const Motion& m, int row, int col, int offset) { return m.at(row, col + offset); }
@@ -123,15 +155,8 @@ void WriteBodies(const Model& model, const Motion& m, const ScenePoints& sp, con
     j->Key("name"), j->Str(model.bodies[b].name), j->Raw(","), j->Key("points"), j->Raw("[");
     for (size_t k = 0; k < sp.body[b].size(); ++k) { if (k) j->Raw(","); j->Vec(sp.body[b][k], L); }
     j->Raw("],");
-    if (const auto& drawn = model.bodies[b].shape) {
-      const Shape sh_drawn = DrawnShape(*drawn);
-      const Shape* sh = &sh_drawn;
-      static const char* kKinds[] = {"box", "cylinder", "sphere"};
-      j->Key("shape"), j->Raw("{"), j->Key("type"), j->Str(kKinds[static_cast<int>(sh->kind)]), j->Raw(",");
-      j->Key("size"), j->Vec(sh->size, L), j->Raw(","), j->Key("radius"), j->Num(sh->radius * L), j->Raw(",");
-      j->Key("length"), j->Num(sh->length * L), j->Raw(","), j->Key("center"), j->Vec(sh->center, L), j->Raw(",");
-      j->Key("axis"), j->Vec(sh->axis, 1), j->Raw("},");
-    }
+    WriteShapes(model, b, "shapes", L, j);
+    j->Raw(",");
     j->Key("poses"), j->Raw("[");
     for (size_t f = 0; f < frames.size(); ++f) {
       const int r = frames[f];
@@ -210,7 +235,7 @@ std::vector<int> ColumnsOfSubjects(const Model& model, const Motion& m, const st
   std::vector<int> all, varying;
   for (int c = 1; c < m.cols(); ++c) {
     const ColumnDescriptor& d = m.columns()[c];
-    if (!Plottable(d) || d.order != 0 || d.IsDiagnostic()) continue;
+    if (!Plottable(d) || d.order != 0 || d.IsDiagnostic() || d.quantity == Quantity::ClearancePoint) continue;
     if (bodies != (d.quantity == Quantity::BodyPosition)) continue;
     if (std::find(names.begin(), names.end(), d.subject) == names.end()) continue;
     all.push_back(c);
@@ -301,6 +326,39 @@ void WriteExtent(const Model& model, const Motion& m, const ScenePoints& sp, con
   else j->Raw("null");
 }
 
+// Clearance outputs (docs/format.md "Clearance"): per frame the distance and the
+// closest points (the table's columns, found by their descriptors), and the located
+// first contacts, for the page's marks and its contact highlight.
+void WriteClearances(const Model& model, const Motion& m, const std::vector<int>& frames, double L, Json* j) {
+  j->Key("clearances"), j->Raw("[");
+  bool first = true;
+  for (size_t o = 0; o < model.outputs.size(); ++o) {
+    const Output& out = model.outputs[o];
+    const int d = m.layout().Find(Quantity::Clearance, static_cast<int>(o), -1, 0);
+    std::array<int, 6> p{};
+    for (int c = 0; c < 6; ++c) p[c] = m.layout().Find(Quantity::ClearancePoint, static_cast<int>(o), c, 0);
+    if (out.kind != OutputKind::Clearance || d < 0 || *std::min_element(p.begin(), p.end()) < 0) continue;
+    j->Raw(first ? "{" : ",{");
+    first = false;
+    j->Key("name"), j->Str(out.name), j->Raw(","), j->Key("body1"), j->Num(out.body1), j->Raw(",");
+    j->Key("body2"), j->Num(out.body2), j->Raw(","), j->Key("distance"), j->Raw("[");
+    for (size_t f = 0; f < frames.size(); ++f) { if (f) j->Raw(","); j->Num(m.at(frames[f], d)); }
+    j->Raw("],"), j->Key("points"), j->Raw("[");
+    for (size_t f = 0; f < frames.size(); ++f)
+      for (int c = 0; c < 6; ++c) { if (f || c) j->Raw(","); j->Num(m.at(frames[f], p[c])); }
+    j->Raw("],"), j->Key("contacts"), j->Raw("[");
+    bool first_hit = true;
+    for (const ContactHit& hit : m.report.contacts) {
+      if (hit.output != static_cast<int>(o)) continue;
+      j->Raw(first_hit ? "{" : ",{");
+      first_hit = false;
+      j->Key("t"), j->Num(hit.t), j->Raw(","), j->Key("point"), j->Vec(hit.point, L), j->Raw("}");
+    }
+    j->Raw("]}");
+  }
+  j->Raw("]");
+}
+
 void Mark(double t, const char* kind, const std::string& label, bool* first, Json* j) {
   j->Raw(*first ? "{" : ",{");
   *first = false;
@@ -308,14 +366,17 @@ void Mark(double t, const char* kind, const std::string& label, bool* first, Jso
 }
 
 // Times every plot marks: re-selections of the redundant equations, a singular
-// position or limit of motion, and where a partial run stopped.
-void WriteMarks(const Motion& m, double stop_t, Json* j) {
+// position or limit of motion, first contacts, and where a partial run stopped.
+void WriteMarks(const Model& model, const Motion& m, double stop_t, Json* j) {
   j->Key("marks"), j->Raw("[");
   bool first = true;
   for (const Reselection& r : m.report.reselections) Mark(r.t, "reselection", "redundant equations re-selected", &first, j);
   const auto& singular = m.stop.singular ? m.stop.singular : m.report.singular;
   if (singular) Mark(singular->t, "singular", "singular position", &first, j);
   if (m.report.limit) Mark(m.report.limit->t, "limit", "limit of motion", &first, j);
+  for (const ContactHit& hit : m.report.contacts)
+    Mark(hit.t, "contact", "first contact of `" + model.BodyName(hit.body1) + "` and `" + model.BodyName(hit.body2) + "`",
+         &first, j);
   if (!m.complete) Mark(stop_t, "stop", "run stopped", &first, j);
   j->Raw("]");
 }
@@ -380,12 +441,16 @@ std::string SceneData(const Model& model, const Motion& m, const SceneOptions& o
   j.Raw(",");
   WriteLinksAndGround(model, sp, L, &j);
   j.Raw(",");
+  WriteShapes(model, kGround, "ground_shapes", L, &j);
+  j.Raw(",");
   WriteSeries(m, frames, &j);
   j.Raw(",");
   WritePanels(!o.plots.empty() ? o.plots : !model.view.plots.empty() ? model.view.plots : DefaultPanels(model, m), &j);
   const double stop_t = m.stop.singular ? m.stop.singular->t : (m.rows() ? m.at(m.rows() - 1, 0) : 0);
   j.Raw(",");
-  WriteMarks(m, stop_t, &j);
+  WriteMarks(model, m, stop_t, &j);
+  j.Raw(",");
+  WriteClearances(model, m, frames, L, &j);
   j.Raw(","), j.Key("stop"), j.Raw("{"), j.Key("complete"), j.Raw(m.complete ? "true" : "false"), j.Raw(",");
   j.Key("t"), j.Num(stop_t), j.Raw(","), j.Key("message"), j.Str(m.stop.Summary()), j.Raw("},");
   j.Key("paused"), j.Raw(model.view.paused ? "true" : "false"), j.Raw("}");
@@ -433,7 +498,7 @@ body{margin:0;font:13px sans-serif;display:grid;grid-template-columns:1fr 560px;
 #panels{overflow:hidden;padding:2px 6px 0 6px;border-left:1px solid #ccc;min-height:0}
 .panel>div{text-align:right;font-size:11px;height:14px} .panel a{color:#06c} #chooser{padding:4px 6px;border-left:1px solid #ccc;font-size:12px}
 #columns{width:540px;height:64px} #label{position:fixed;background:#fff;border:1px solid #999;padding:2px 4px;pointer-events:none}
-#status{color:#f66} #export{display:none} #label:empty{display:none}
+#status{color:#f66} #contact{color:#fa4} #export{display:none} #label:empty{display:none}
 </style></head><body>
 <div id="bar"><b id="title"></b><button id="play">play</button><input id="time" type="range" min="0" max="1000" value="0">
 <span id="clock"></span> speed <select id="speed"><option>0.1</option><option>0.25</option><option selected>1</option><option>2</option><option>5</option></select>
@@ -443,7 +508,7 @@ body{margin:0;font:13px sans-serif;display:grid;grid-template-columns:1fr 560px;
 <label title="orthographic projection (o)"><input id="ortho" type="checkbox"> ortho</label>
 <label><input id="traces" type="checkbox" checked> paths</label><label><input id="labels" type="checkbox" checked> labels</label>
 <a id="csv" href="#" title="the page's table (as decimated for the page)">table CSV</a>
-<span id="status"></span></div>
+<span id="contact"></span><span id="status"></span></div>
 <div id="view"></div>
 <div id="panels"></div>
 <div id="chooser">plotted columns (ctrl-click for several; one panel per unit):<br><select id="columns" multiple></select>

@@ -1,5 +1,5 @@
-// Shapes (docs/format.md "Bodies", "Clearance"): box, cylinder, sphere, capsule and
-// convex, in body coordinates (ground's: global), converted to SI. They are drawn
+// Shapes (docs/format.md "Bodies", "Clearance"): box, cylinder, sphere, capsule,
+// convex and mesh, in body coordinates (ground's: global), converted to SI. They are drawn
 // (`shape`) and measured by clearance outputs; a malformed one is an error.
 #include <cmath>
 
@@ -23,11 +23,13 @@ std::optional<Shape> Compiler::CompileShape(const ShapeSpec& o) {
     ok = CompileRoundShape(o, &sh);
   } else if (*o.type == "convex") {
     ok = CompileConvex(o, &sh);
+  } else if (*o.type == "mesh") {
+    ok = CompileMesh(o, &sh);
   } else {
-    const std::vector<std::string> kinds = {"box", "cylinder", "sphere", "capsule", "convex"};
+    const std::vector<std::string> kinds = {"box", "cylinder", "sphere", "capsule", "convex", "mesh"};
     const std::string g = DidYouMean(*o.type, kinds);
     Error(ptr + "/type", "unknown shape '" + Shorten(*o.type) + "'",
-          (g.empty() ? "" : "did you mean '" + g + "'? ") + "use box, cylinder, sphere, capsule or convex");
+          (g.empty() ? "" : "did you mean '" + g + "'? ") + "use box, cylinder, sphere, capsule, convex or mesh");
     return std::nullopt;
   }
   if (!ok) return std::nullopt;
@@ -100,6 +102,33 @@ bool Compiler::CompileConvex(const ShapeSpec& o, Shape* sh) {
   sh->points = hull.vertices;
   sh->faces = hull.faces;
   sh->num_faces = hull.num_faces;
+  return true;
+}
+
+// The triangles the reader took from the mesh's file (spec/read_shapes.cpp), scaled
+// into the file's length unit by "scale" (default 1), then into SI.
+bool Compiler::CompileMesh(const ShapeSpec& o, Shape* sh) {
+  const std::string& ptr = o.pointer;
+  sh->kind = Shape::Kind::Mesh;
+  if (!o.file) {
+    Error(ptr, "a mesh shape needs 'file'", "give \"file\": \"part.stl\" (STL or OBJ, relative to the mechanism file)");
+    return false;
+  }
+  double scale = 1;
+  if (o.scale) {
+    auto v = Value(o.scale);
+    if (!v || !(*v > 0) || !std::isfinite(*v)) {
+      if (v) Error(ptr + "/scale", "'scale' must be a positive number, not " + FormatNumber(*v),
+                   "give the factor from the mesh file's numbers to the file's length unit (0.001: a mesh in mm, a file in m)");
+      return false;
+    }
+    scale = *v;
+  }
+  if (!o.mesh) return false;  // the reader reported why
+  const double f = scale * length_;
+  sh->points.reserve(o.mesh->vertices.size());
+  for (const auto& p : o.mesh->vertices) sh->points.push_back(Vec3(p[0], p[1], p[2]) * f);
+  sh->triangles = o.mesh->triangles;
   return true;
 }
 

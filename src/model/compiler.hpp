@@ -81,6 +81,7 @@ class Compiler {
   std::vector<Shape> CompileShapes(const std::vector<ShapeSpec>& shapes);
   bool CompileRoundShape(const ShapeSpec& o, Shape* sh);
   bool CompileConvex(const ShapeSpec& o, Shape* sh);
+  bool CompileMesh(const ShapeSpec& o, Shape* sh);
 
   // Markers (compile_markers.cpp).
   void CompileMarkers(BodyIndex body, const std::vector<MarkerSpec>& markers);

@@ -35,15 +35,18 @@ struct Inertia {
 /// Geometry of a body, in body coordinates (SI): the drawing's `shape` and what
 /// clearance outputs measure (docs/format.md "Clearance").
 struct Shape {
-  enum class Kind { Box, Cylinder, Sphere, Capsule, Convex } kind = Kind::Box;
+  enum class Kind { Box, Cylinder, Sphere, Capsule, Convex, Mesh } kind = Kind::Box;
   Vec3 size = Vec3::Zero();    // box: edge lengths along the body axes
   double radius = 0, length = 0;  // cylinder, capsule (along `axis`; length between the caps' centres), sphere
   Vec3 center = Vec3::Zero(), axis = Vec3::UnitZ();
   // Convex: the hull's vertices (relative to `center`) and its faces, each as
   // [n, i0, …, i(n−1)] counter-clockwise seen from outside (math/convex_hull.hpp).
+  // Mesh: `points` are its vertices (relative to `center`) and `triangles` index them
+  // (the file's triangles, scaled; its surface is what clearance measures).
   std::vector<Vec3> points;
   std::vector<int> faces;
   int num_faces = 0;
+  std::vector<std::array<int, 3>> triangles;
 };
 
 struct Body {

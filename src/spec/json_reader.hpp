@@ -23,6 +23,10 @@ class JsonReader {
  public:
   explicit JsonReader(DiagnosticLog* out) : out_(out) {}
   DiagnosticLog& diagnostics() { return *out_; }
+  /// The folder files named by the mechanism file are read from (mesh shapes):
+  /// the mechanism file's own, "" (the working directory) for text without a path.
+  const std::string& folder() const { return folder_; }
+  void set_folder(std::string folder) { folder_ = std::move(folder); }
 
   void Error(const std::string& ptr, const std::string& msg, const std::string& fix = "") { out_->Error(ptr, msg, fix); }
   void Warn(const std::string& ptr, const std::string& msg, const std::string& fix = "") { out_->Warn(ptr, msg, fix); }
@@ -48,6 +52,7 @@ class JsonReader {
 
  private:
   DiagnosticLog* out_;
+  std::string folder_;
 };
 
 /// Every element of the array doc[key] through `read(element, pointer, index)`.

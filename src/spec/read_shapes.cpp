@@ -1,7 +1,9 @@
 // Shapes (docs/format.md "Bodies" and "Clearance"): a body's "shape", its "shapes"
-// and ground's "shapes". The reader checks the keys; kinds, sizes and the convex
-// hull are compile's (src/model/compile_shapes.cpp).
+// and ground's "shapes". The reader checks the keys and reads a mesh shape's file
+// (spec/mesh_file.hpp); kinds, sizes, the convex hull and the mesh's scale are
+// compile's (src/model/compile_shapes.cpp).
 #include "spec/json_reader.hpp"
+#include "spec/mesh_file.hpp"
 
 namespace mechkin::spec_reader {
 
@@ -19,15 +21,35 @@ void ReadConvexPoints(JsonReader& rd, const json& o, const std::string& ptr, Sha
     sh->points.push_back(rd.VectorValue(pts[k], ptr + "/points/" + std::to_string(k), "points/" + std::to_string(k)));
 }
 
+// A mesh shape's "file", relative to the mechanism file's folder (or absolute): read
+// now, so that every variant compiled from the spec shares its triangles. A problem
+// names the shape's "file" pointer, the file as opened and a fix; the shape is then
+// refused (not ok), without a second message from compile.
+void ReadMesh(JsonReader& rd, const std::string& ptr, ShapeSpec* sh) {
+  if (!sh->file) return;
+  const std::string& name = *sh->file;
+  const std::string path = !name.empty() && name[0] == '/' ? name : rd.folder() + name;
+  auto mesh = std::make_shared<MeshSpec>();
+  MeshFileProblem problem;
+  if (ReadMeshFile(path, mesh.get(), &problem)) {
+    sh->mesh = std::move(mesh);
+    return;
+  }
+  rd.Error(ptr + "/file", "mesh file '" + name + "'" + (path == name ? "" : " (" + path + ")") + ": " + problem.message,
+           problem.fix);
+  sh->ok = false;
+}
+
 }  // namespace
 
 // {"type": "box", "size"} | {"type": "cylinder" or "capsule", "radius", "length", "axis"}
-// | {"type": "sphere", "radius"} | {"type": "convex", "points"}, with an optional "center".
+// | {"type": "sphere", "radius"} | {"type": "convex", "points"} | {"type": "mesh", "file",
+// "scale"}, with an optional "center".
 std::optional<ShapeSpec> ReadShape(JsonReader& rd, const json& o, const std::string& ptr) {
   ShapeSpec sh;
   sh.pointer = ptr;
   sh.type = rd.String(o, "type", ptr);
-  if (!rd.CheckObject(o, ptr, {"type", "size", "radius", "length", "axis", "center", "points"}, {"type"},
+  if (!rd.CheckObject(o, ptr, {"type", "size", "radius", "length", "axis", "center", "points", "file", "scale"}, {"type"},
                       "'shape'") ||
       !sh.type)
     return std::nullopt;
@@ -37,6 +59,9 @@ std::optional<ShapeSpec> ReadShape(JsonReader& rd, const json& o, const std::str
   sh.radius = rd.Number(o, "radius", ptr);
   sh.length = rd.Number(o, "length", ptr);
   ReadConvexPoints(rd, o, ptr, &sh);
+  sh.file = rd.String(o, "file", ptr);
+  sh.scale = rd.Number(o, "scale", ptr);
+  if (*sh.type == "mesh") ReadMesh(rd, ptr, &sh);
   return sh;
 }
 

@@ -11,6 +11,8 @@ using spec_reader::JsonReader;
 SpecReadResult ReadMechanismSpec(const std::string& text, const std::string& source_name) {
   SpecReadResult result;
   JsonReader rd(&result.diagnostics);
+  const size_t slash = source_name.rfind('/');
+  rd.set_folder(slash == std::string::npos ? "" : source_name.substr(0, slash + 1));
   json doc;
   rd.diagnostics().SetPlace(Section::Parse);
   if (!spec_reader::ParseJson(text, rd, &doc)) return result;

@@ -76,15 +76,26 @@ struct InertiaSpec {
   bool ok = true;
 };
 
+/// The triangles of a mesh shape's file (spec/mesh_file.hpp), as the file gives
+/// them: its own numbers, before "scale" and the file's length unit.
+struct MeshSpec {
+  std::string path;  // as opened (the mechanism file's folder joined with "file")
+  std::vector<std::array<double, 3>> vertices;
+  std::vector<std::array<int, 3>> triangles;  // indices into vertices
+};
+
 /// "shape" (drawn, and measured by clearance outputs) or an element of "shapes":
-/// box, cylinder, sphere, capsule (radius, length, axis) or convex (the hull of
-/// "points"), in the body's coordinates.
+/// box, cylinder, sphere, capsule (radius, length, axis), convex (the hull of
+/// "points") or mesh (the triangles of an STL or OBJ "file"), in the body's coordinates.
 struct ShapeSpec {
   std::optional<std::string> type;
   std::optional<Vector3Spec> center, size, axis;
   std::optional<Scalar> radius, length;
   std::vector<Vector3Spec> points;  // convex
   std::string points_error;         // convex: "'points' must be an array of [x, y, z]"
+  std::optional<std::string> file;  // mesh: the file's name as written (relative to the mechanism file)
+  std::optional<Scalar> scale;      // mesh: file numbers → the mechanism file's length unit (default 1)
+  std::shared_ptr<const MeshSpec> mesh;  // mesh: read by the reader (nullptr: none, or reported)
   std::string pointer;
   bool ok = true;
 };

@@ -78,7 +78,7 @@ TEST(ClearanceCli, MalformedShapesAndUnknownBodiesNamePointerMessageAndFix) {
       {"shape-negative-radius.json", "/bodies/0/shape/radius: 'radius' must be a positive number", "units/length"},
       {"convex-three-points.json", "/bodies/1/shapes/1/points: a convex shape needs at least 4 points, not 3",
        "4 or more corners"},
-      {"shape-unknown-kind.json", "/bodies/2/shape/type: unknown shape 'cone'", "use box, cylinder, sphere, capsule or convex"},
+      {"shape-unknown-kind.json", "/bodies/2/shape/type: unknown shape 'cone'", "use box, cylinder, sphere, capsule, convex or mesh"},
       {"clearance-unknown-body.json", "/outputs/1/body2: unknown body 'slidr'", "did you mean 'slider'?"}};
   for (const Case& c : cases) {
     const auto r = RunCli("check " + dir + c.file);
@@ -101,6 +101,51 @@ TEST(ClearanceCli, MalformedShapesAndUnknownBodiesNamePointerMessageAndFix) {
   EXPECT_NE(flat.out.find("/bodies/0/shapes/0/points: the convex shape's points have no hull: the points lie in one plane"),
             std::string::npos)
       << flat.out;
+}
+
+// Mesh shapes' files: each problem names the shape's "file" pointer, the file, what is
+// wrong (the line of an OBJ face) and a fix, exit 1.
+TEST(ClearanceCli, BadMeshFilesNamePointerFileProblemAndFix) {
+  const std::string dir = ::testing::TempDir() + "/";
+  std::ofstream(dir + "short.stl", std::ios::binary) << std::string(80, 'x') << std::string("\x02\0\0\0", 4)
+                                                     << std::string(60, '\0');  // 2 triangles announced, 1.2 given
+  std::ofstream(dir + "cut.stl") << "solid cut\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n";
+  std::ofstream(dir + "bad-index.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n# a face\nf 1 2 4\n";
+  std::ofstream(dir + "empty.obj") << "# only vertices\nv 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  std::ofstream(dir + "part.step") << "ISO-10303-21;\n";
+  struct Case { std::string file, problem, fix; };
+  const std::vector<Case> cases = {
+      {"no-such-part.stl", "cannot open it: No such file or directory", "relative to the mechanism file's folder"},
+      {"short.stl", "a binary STL whose header counts 2 triangles (184 bytes) but the file has 144 bytes: truncated",
+       "export the part again"},
+      {"cut.stl", "line 2: the file ends inside this facet: truncated", "endfacet"},
+      {"bad-index.obj", "line 5: face vertex 4 is out of range: 3 vertices up to here", "counted from 1"},
+      {"empty.obj", "the file has no triangles", "'f' lines"},
+      {"part.step", "a mesh file must be STL (.stl) or OBJ (.obj)", "give an .stl or .obj file"}};
+  for (const Case& c : cases) {
+    json doc = SliderPastBox();
+    doc["bodies"][0]["shapes"] = {{{"type", "box"}, {"size", {1, 1, 1}}}, {{"type", "mesh"}, {"file", c.file}}};
+    const auto r = RunCli("check " + WriteTemp("mesh-" + c.file + ".json", doc));
+    EXPECT_EQ(r.code, 1) << c.file << ": " << r.out;
+    const std::string where = "/bodies/0/shapes/1/file: mesh file '" + c.file + "' (" + dir + c.file + "): " + c.problem;
+    EXPECT_NE(r.out.find(where), std::string::npos) << where << "\n" << r.out;
+    EXPECT_NE(r.out.find("fix: "), std::string::npos) << c.file << ": " << r.out;
+    EXPECT_NE(r.out.find(c.fix), std::string::npos) << c.file << ": " << r.out;
+    EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+  }
+  json doc = SliderPastBox();
+  doc["bodies"][0]["shape"] = {{"type", "mesh"}};
+  const auto nofile = RunCli("check " + WriteTemp("mesh-nofile.json", doc));
+  EXPECT_EQ(nofile.code, 1);
+  EXPECT_NE(nofile.out.find("/bodies/0/shape: a mesh shape needs 'file'"), std::string::npos) << nofile.out;
+  std::ofstream(dir + "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  doc["bodies"][0]["shape"] = {{"type", "mesh"}, {"file", "tri.obj"}, {"scale", -2}};
+  const auto negative = RunCli("check " + WriteTemp("mesh-negative.json", doc));
+  EXPECT_EQ(negative.code, 1);
+  EXPECT_NE(negative.out.find("/bodies/0/shape/scale: 'scale' must be a positive number, not -2"), std::string::npos)
+      << negative.out;
+  doc["bodies"][0]["shape"]["scale"] = 1;
+  EXPECT_EQ(RunCli("check " + WriteTemp("mesh-ok.json", doc)).code, 0);
 }
 
 }  // namespace

@@ -69,7 +69,9 @@ RunRequest RunOptions::Request() const {
   LimitAction at_limit = LimitAction::Stop;
   Parse(on_limit, &at_limit);  // CLI11 admitted only NamesOf<LimitAction>()
   r.set_limit_action(at_limit);
-  r.on_contact_stop = on_contact == "stop";  // CLI11 admitted only NamesOf<ContactAction>()
+  ContactAction at_contact = ContactAction::Report;
+  Parse(on_contact, &at_contact);  // CLI11 admitted only NamesOf<ContactAction>()
+  r.set_contact_action(at_contact);
   r.keep_step_diagnostics = false;  // streamed: the table's diagnostic columns carry them
   return r;
 }

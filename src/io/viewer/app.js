@@ -5,7 +5,8 @@
 // points' paths fading with time (coupler curves), frames the mechanism's whole
 // motion with standard views (front, side, top, iso; perspective or
 // orthographic; up = the data's up axis), and plots columns in panels, one per
-// unit, with ticks, grids, legends, a cursor readout and the marked events.
+// unit, with ticks, grids, legends, a cursor readout and the marked events;
+// clearance outputs' closest points are marked and touching bodies' shapes drawn red.
 // Test hooks: window.mechkin and the address fragment (#t= #paused #view= #ortho
 // #x= #probe= #export=).
 (function () {
@@ -61,6 +62,28 @@
   }
   function ball(p, r, mat) { const m = new THREE.Mesh(new THREE.SphereBufferGeometry(r, 16, 12), mat); m.position.copy(p); return m; }
 
+  // The user's own geometry (a body's shape and shapes, ground's shapes), semi-transparent
+  // over the sticks; a mesh (or a convex hull's faces) as its triangles, flat-shaded.
+  const shapesOf = new Map();  // body index (ground −1) → its shape meshes
+  function shapeMesh(sh, color) {
+    const sm = new THREE.MeshLambertMaterial({ color: color, transparent: true, opacity: 0.45, side: THREE.DoubleSide });
+    let geo;
+    if (sh.type === "box") geo = new THREE.BoxBufferGeometry(sh.size[0], sh.size[1], sh.size[2]);
+    else if (sh.type === "cylinder") geo = new THREE.CylinderBufferGeometry(sh.radius, sh.radius, sh.length, 24);
+    else if (sh.type === "mesh") {
+      geo = new THREE.BufferGeometry();
+      geo.setAttribute("position", new THREE.BufferAttribute(new Float32Array(sh.positions), 3));
+      geo.setIndex(sh.triangles);
+      geo = geo.toNonIndexed();
+      geo.computeVertexNormals();
+    } else geo = new THREE.SphereBufferGeometry(sh.radius, 24, 16);
+    const mesh = new THREE.Mesh(geo, sm);
+    mesh.position.copy(v3(sh.center));
+    if (sh.type === "cylinder") mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), v3(sh.axis).normalize());
+    mesh.userData.color = color;
+    return mesh;
+  }
+
   // Bodies: sticks from the centroid of their points (a bar between two points).
   const groups = [], pickable = [];
   D.bodies.forEach(function (b, i) {
@@ -74,24 +97,22 @@
       pts.forEach(function (p) { g.add(stick(c, p, thick, mat)); });
       g.add(ball(c, thick * 1.3, mat));
     } else if (pts.length === 1) g.add(ball(pts[0], thick * 2, mat));
-    if (b.shape) {  // the user's own geometry, semi-transparent over the sticks
-      const sm = new THREE.MeshLambertMaterial({ color: palette[i % palette.length], transparent: true, opacity: 0.45 });
-      let geo;
-      if (b.shape.type === "box") geo = new THREE.BoxBufferGeometry(b.shape.size[0], b.shape.size[1], b.shape.size[2]);
-      else if (b.shape.type === "cylinder") geo = new THREE.CylinderBufferGeometry(b.shape.radius, b.shape.radius, b.shape.length, 24);
-      else geo = new THREE.SphereBufferGeometry(b.shape.radius, 24, 16);
-      const mesh = new THREE.Mesh(geo, sm);
-      mesh.position.copy(v3(b.shape.center));
-      if (b.shape.type === "cylinder") mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), v3(b.shape.axis).normalize());
-      g.add(mesh);
-    }
+    b.shapes.forEach(function (sh) { g.add(shapeMesh(sh, palette[i % palette.length])); });
     g.traverse(function (o) { if (o.isMesh) { o.userData.label = b.name; pickable.push(o); } });
+    shapesOf.set(i, g.children.filter(function (o) { return o.userData.color !== undefined; }));
     g.userData.color = palette[i % palette.length];
     scene.add(g);
     groups.push(g);
   });
   const ground = new THREE.Group();
   scene.add(ground);
+  shapesOf.set(-1, (D.ground_shapes || []).map(function (sh) {
+    const m = shapeMesh(sh, 0x999999);
+    m.userData.label = "ground";
+    pickable.push(m);
+    ground.add(m);
+    return m;
+  }));
   function parent(body) { return body < 0 ? ground : groups[body]; }
 
   // Joint glyphs by the joint type's glyph name (src/joints), fixed in body1 (ground parts grey).
@@ -140,6 +161,47 @@
     scene.add(line);
     return { c: c, line: line };
   });
+  // Clearance outputs: the two closest points (small balls) and the line between them,
+  // per frame from the table's columns; where the bodies touch, their shapes turn red.
+  const markMat = material(0x222222), touchColor = 0xff0000;
+  const clearances = (D.clearances || []).map(function (c) {
+    const balls = [ball(new THREE.Vector3(), thick * 0.7, markMat), ball(new THREE.Vector3(), thick * 0.7, markMat)];
+    const geo = new THREE.BufferGeometry();
+    geo.setAttribute("position", new THREE.BufferAttribute(new Float32Array(6), 3));
+    const line = new THREE.Line(geo, new THREE.LineBasicMaterial({ color: 0x222222 }));
+    balls.concat([line]).forEach(function (o) { o.userData.label = c.name; scene.add(o); });
+    // In contact from each located first contact until a row is clear again.
+    const spans = c.contacts.map(function (h) {
+      let end = Infinity;
+      for (let k = 0; k < D.times.length; ++k) if (D.times[k] > h.t && c.distance[k] > 0) { end = D.times[k]; break; }
+      return [h.t, end];
+    });
+    return { c: c, balls: balls, line: line, spans: spans };
+  });
+  function setClearances(k, u) {
+    const touching = new Set(), report = [], inContact = [];
+    clearances.forEach(function (cl) {
+      const P = cl.c.points, d = cl.c.distance, k1 = u > 0 && k + 1 < n ? k + 1 : k, w = k1 === k ? 0 : u;
+      const attr = cl.line.geometry.attributes.position;
+      for (let s = 0; s < 2; ++s) {
+        const a = 6 * k + 3 * s, b = 6 * k1 + 3 * s;
+        cl.balls[s].position.set(P[a] + w * (P[b] - P[a]), P[a + 1] + w * (P[b + 1] - P[a + 1]), P[a + 2] + w * (P[b + 2] - P[a + 2]));
+        attr.setXYZ(s, cl.balls[s].position.x, cl.balls[s].position.y, cl.balls[s].position.z);
+      }
+      attr.needsUpdate = true;
+      cl.line.geometry.computeBoundingSphere();
+      const contact = cl.spans.some(function (sp) { return current >= sp[0] && current < sp[1]; }) || (d[k] <= 0 && d[k1] <= 0);
+      if (contact) { touching.add(cl.c.body1); touching.add(cl.c.body2); inContact.push(cl.c.name); }
+      report.push(cl.c.name + ":" + cl.balls.map(function (m) { return m.position.toArray().map(function (x) { return x.toPrecision(12); }).join(","); }).join(","));
+    });
+    shapesOf.forEach(function (meshes, body) {
+      meshes.forEach(function (m) { m.material.color.setHex(touching.has(body) ? touchColor : m.userData.color); });
+    });
+    // Test hooks: the marks as drawn, the outputs in contact and the bodies drawn red.
+    document.body.setAttribute("data-clearance", report.join(";"));
+    document.body.setAttribute("data-contact", inContact.join(","));
+    document.body.setAttribute("data-red-bodies", Array.from(touching).sort(function (a, b) { return a - b; }).join(","));
+  }
   scene.add(new THREE.AxesHelper(L * 0.3));
   // The floor: a grid across the up axis, under the whole motion's box.
   const boxCenter = new THREE.Vector3().addVectors(boxLo, boxHi).multiplyScalar(0.5);
@@ -204,6 +266,7 @@
       cl.line.geometry.computeBoundingSphere();
       cl.line.computeLineDistances();
     });
+    setClearances(k, u);
     slider.value = String(Math.round(1000 * (current - T[0]) / Math.max(T[n - 1] - T[0], 1e-300)));
     clock.textContent = "t = " + current.toPrecision(6) + " s";
     paths.fade(k);
@@ -577,6 +640,10 @@
     document.getElementById("export").textContent = what === "csv" ? plots.csvText() : plots.svgText(Number(what));
   }
   status.textContent = D.stop.complete ? "" : "run stopped at t = " + D.stop.t + " s: " + D.stop.message;
+  // First contacts: named with their times in the bar (and marked on every plot).
+  const contactMarks = D.marks.filter(function (m) { return m.kind === "contact"; });
+  document.getElementById("contact").textContent = contactMarks.map(function (m) { return m.label + " at t = " + Number(m.t.toPrecision(6)) + " s"; }).join("; ");
+  if (contactMarks.length) document.body.setAttribute("data-first-contact", String(contactMarks[0].t));
   flushErrors();
   document.body.setAttribute("data-ready", "1");
   document.body.setAttribute("data-ready-ms", performance.now().toFixed(0));  // since navigation start
