@@ -25,10 +25,11 @@ struct CliResult {
   std::string out;  // stdout and stderr together
 };
 
-/// `mechkin ARGS` through the shell (ARGS may redirect), waited for.
-inline CliResult RunCli(const std::string& args) {
+/// `mechkin ARGS` through the shell with `stderr_to` as stderr's redirection ("&1":
+/// into the captured output), waited for.
+inline CliResult RunCliWithStderr(const std::string& args, const std::string& stderr_to) {
   CliResult r;
-  FILE* p = ::popen((MechkinBinary() + " " + args + " 2>&1").c_str(), "r");
+  FILE* p = ::popen((MechkinBinary() + " " + args + " 2>" + stderr_to).c_str(), "r");
   char buf[4096];
   size_t n;
   while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
@@ -36,6 +37,9 @@ inline CliResult RunCli(const std::string& args) {
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return r;
 }
+
+/// `mechkin ARGS` through the shell (ARGS may redirect), waited for.
+inline CliResult RunCli(const std::string& args) { return RunCliWithStderr(args, "&1"); }
 
 /// How a signalled child ended: an exit code of its own, or killed by a signal.
 struct SignalledExit {

@@ -216,16 +216,18 @@ bool Expression::IsReservedName(const std::string& name) {
   return name == "t" || name == "pi" || ExpressionParser::Functions().count(name) > 0;
 }
 
-std::vector<std::string> Expression::Names(const std::string& text) {
+namespace {
+
+// The names of a text by scanning alone (no parse, no exception), the reserved ones left out.
+std::vector<std::string> ScanNames(const std::string& text, bool dotted) {
   std::vector<std::string> names;
   for (size_t i = 0; i < text.size();) {
     if (IsDigit(text[i]) || text[i] == '.') {
       i = NumberEnd(text, i);
     } else if (IsNameChar(text[i])) {
-      size_t end = i;
-      while (end < text.size() && IsNameChar(text[end])) ++end;
+      const size_t end = NameEnd(text, i, dotted);
       std::string name = text.substr(i, end - i);
-      if (!IsReservedName(name)) names.push_back(std::move(name));
+      if (!Expression::IsReservedName(name)) names.push_back(std::move(name));
       i = end;
     } else {
       ++i;
@@ -233,6 +235,12 @@ std::vector<std::string> Expression::Names(const std::string& text) {
   }
   return names;
 }
+
+}  // namespace
+
+std::vector<std::string> Expression::Names(const std::string& text) { return ScanNames(text, false); }
+
+std::vector<std::string> Expression::DottedNames(const std::string& text) { return ScanNames(text, true); }
 
 Expression Expression::Parse(const std::string& text, const ExpressionSymbols* symbols, bool allow_time) {
   if (text.size() > kMaxLength)
@@ -260,23 +268,6 @@ Expression Expression::ParseOverColumns(const std::string& text, const Expressio
   e.text_ = text;
   ExpressionParser(&e, &symbols, true, &slots, true).Run();
   return e;
-}
-
-std::vector<std::string> Expression::DottedNames(const std::string& text) {
-  std::vector<std::string> names;
-  for (size_t i = 0; i < text.size();) {
-    if (IsDigit(text[i]) || text[i] == '.') {
-      i = NumberEnd(text, i);
-    } else if (IsNameChar(text[i])) {
-      const size_t end = NameEnd(text, i, true);
-      std::string name = text.substr(i, end - i);
-      if (!IsReservedName(name)) names.push_back(std::move(name));
-      i = end;
-    } else {
-      ++i;
-    }
-  }
-  return names;
 }
 
 std::vector<int> Expression::SlotsUsed() const {

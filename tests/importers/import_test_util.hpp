@@ -41,14 +41,7 @@ inline std::string TempFile(const std::string& name, const std::string& text) {
 
 /// `mechkin ARGS`: exit code and standard output only (stderr to `err_path` when given).
 inline mechkin_test::CliResult Stdout(const std::string& args, const std::string& err_path = "/dev/null") {
-  mechkin_test::CliResult r;
-  FILE* p = ::popen((mechkin_test::MechkinBinary() + " " + args + " 2>" + err_path).c_str(), "r");
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
+  return mechkin_test::RunCliWithStderr(args, err_path);
 }
 
 /// The first file's report of `mechkin check --format json ARGS`.

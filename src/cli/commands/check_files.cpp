@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "analysis/enum_names.hpp"
+#include "cli/commands/load_for_command.hpp"
 #include "io/check_formats.hpp"
 
 namespace mechkin {
@@ -14,22 +15,6 @@ namespace mechkin {
 namespace {
 
 constexpr size_t kSlowestShown = 5;
-
-bool ParseShard(const std::string& s, int* shard, int* shards) {
-  const auto slash = s.find('/');
-  if (slash == std::string::npos) return false;
-  const auto whole = [](const std::string& text, int* v) {
-    size_t used = 0;
-    try {
-      *v = std::stoi(text, &used);
-    } catch (const std::exception&) {
-      return false;
-    }
-    return used == text.size();
-  };
-  return whole(s.substr(0, slash), shard) && whole(s.substr(slash + 1), shards) && *shards >= 1 && *shard >= 1 &&
-         *shard <= *shards;
-}
 
 // The paths of a list, one a line (empty lines skipped, a trailing CR dropped).
 bool ReadList(const std::string& list, std::vector<std::string>* files, std::ostream& err) {
@@ -76,7 +61,7 @@ bool PlanCheck(const CheckOptions& o, CheckPlan* plan, std::ostream& err) {
   plan->listed = files.size();
   plan->summary = files.size() > 1 || !o.files_from.empty() || !o.output.empty();
   int shard = 1, shards = 1;
-  if (!o.shard.empty() && !ParseShard(o.shard, &shard, &shards)) {
+  if (!o.shard.empty() && !ParseShardText(o.shard, &shard, &shards)) {
     err << "mechkin check: --shard '" << o.shard << "': expected i/N with 1 <= i <= N, e.g. --shard 2/8\n";
     return false;
   }

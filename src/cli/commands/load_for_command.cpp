@@ -64,4 +64,20 @@ bool ParseOverrides(const std::vector<std::string>& settings, ParameterOverrides
   return true;
 }
 
+bool ParseShardText(const std::string& text, int* shard, int* shards) {
+  const auto slash = text.find('/');
+  if (slash == std::string::npos) return false;
+  const auto whole = [](const std::string& part, int* v) {  // each side a whole integer
+    size_t used = 0;
+    try {
+      *v = std::stoi(part, &used);
+    } catch (const std::exception&) {
+      return false;
+    }
+    return used == part.size();
+  };
+  return whole(text.substr(0, slash), shard) && whole(text.substr(slash + 1), shards) && *shards >= 1 &&
+         *shard >= 1 && *shard <= *shards;
+}
+
 }  // namespace mechkin

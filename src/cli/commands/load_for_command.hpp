@@ -32,5 +32,8 @@ bool OpenReport(const std::string& path, const std::vector<std::string>& inputs,
 bool CommitReport(OutputFile* file, const std::string& text, const std::string& command, std::ostream& err);
 /// Reads "--set NAME=NUMBER" options; false (the problem printed) for a malformed one.
 bool ParseOverrides(const std::vector<std::string>& settings, ParameterOverrides* out, std::ostream& err);
+/// "i/N" with whole numbers 1 ≤ i ≤ N (a job array's shard: `check --shard`, `sweep --shard`);
+/// false for anything else ("1/2/3", "1/2x", "0/2").
+bool ParseShardText(const std::string& text, int* shard, int* shards);
 
 }  // namespace mechkin

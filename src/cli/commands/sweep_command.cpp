@@ -51,21 +51,7 @@ bool GridWithinLimit(const std::vector<GridAxis>& axes, std::string* why) {
 }
 
 bool ParseShard(const std::string& s, SweepOptions* options) {
-  if (s.empty()) return true;
-  const auto slash = s.find('/');
-  if (slash == std::string::npos) return false;
-  // Each side a whole integer: "1/2/3" or "1/2x" is not "1/2".
-  const auto whole = [](const std::string& text, int* v) {
-    size_t used = 0;
-    try {
-      *v = std::stoi(text, &used);
-    } catch (const std::exception&) {
-      return false;
-    }
-    return used == text.size();
-  };
-  if (!whole(s.substr(0, slash), &options->shard) || !whole(s.substr(slash + 1), &options->shards)) return false;
-  return options->shards >= 1 && options->shard >= 1 && options->shard <= options->shards;
+  return s.empty() || ParseShardText(s, &options->shard, &options->shards);
 }
 
 // The summary's destination, opened before the work; every input file is refused as it.
