@@ -49,9 +49,20 @@ def _compile(text, source, overrides=None):
     return Model(core)
 
 
-def load(path):
-    """Reads and compiles a mechanism file (format v1). Raises FormatError."""
+def load(path, drive=None, span=None):
+    """Reads and compiles a mechanism file (format v1), or imports a URDF, MJCF,
+    SDFormat or FreeCAD file (docs/import.md; detected by extension and content).
+
+    A foreign file has no drivers: drive={"crank": "2*pi*t"} drives joints by
+    functions of t (rad or m), over span=(start, end, steps) (default 0, 1, 360).
+    Raises FormatError: for a foreign file, each diagnostic's pointer is the place
+    in that file (FILE:LINE: <element>)."""
     path = str(path)
+    if _mechkin.foreign_format(path):
+        return _load_foreign(path, drive, span)
+    if drive is not None or span is not None:
+        raise ValueError("%s: drive= and span= are for imported (URDF, MJCF, SDFormat, FreeCAD) files; "
+                         "a mechanism file has its own drivers and analysis" % path)
     with open(path, "rb") as f:
         data = f.read()
     try:
@@ -60,6 +71,20 @@ def load(path):
         raise FormatError(path, [("", "the file is not UTF-8 text (byte %d)" % e.start,
                                   "save the file as UTF-8")]) from None
     return _compile(text, path)
+
+
+def _load_foreign(path, drive, span):
+    drives = [(str(k), str(v)) for k, v in dict(drive or {}).items()]
+    if span is not None:
+        start, end, steps = span
+        if not (float(end) > float(start)) or int(steps) != steps or not 1 <= int(steps) <= 10 ** 7:
+            raise ValueError("span=%r: expected (start, end, steps) with end > start and 1 <= steps <= 1e7, "
+                             "e.g. span=(0, 1, 360)" % (span,))
+        span = [float(start), float(end), float(steps)]
+    core, errors, warnings = _mechkin.compile_file(path, {}, drives, span or [])
+    if core is None:
+        raise FormatError(path, errors)
+    return Model(core)
 
 
 def loads(text_or_dict, source="<string>"):

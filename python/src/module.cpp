@@ -19,6 +19,7 @@
 #include "analysis/sweep.hpp"
 #include "analysis/tolerance.hpp"
 #include "io/check_report_writer.hpp"
+#include "io/load_any.hpp"
 #include "io/range_report_writer.hpp"
 #include "io/table_writer.hpp"
 #include "io/tolerance_report_writer.hpp"
@@ -47,13 +48,9 @@ py::list DiagnosticList(const std::vector<Diagnostic>& ds) {
   return out;
 }
 
-// (model or None, errors, warnings)
-py::tuple CompileText(const std::string& text, const std::string& source, const ParameterOverrides& overrides) {
-  LoadResult r;
-  {
-    py::gil_scoped_release release;
-    r = LoadMechanismText(text, source, overrides);
-  }
+// (model or None, errors, warnings) of a load; the model keeps `text`, its pickled form.
+py::tuple LoadedTuple(LoadResult r, const std::string& text, const std::string& source,
+                      const ParameterOverrides& overrides) {
   if (!r.ok()) return py::make_tuple(py::none(), DiagnosticList(r.errors), DiagnosticList(r.warnings));
   auto m = std::make_shared<LoadedModel>();
   m->model = std::make_shared<const Model>(std::move(*r.model));
@@ -62,6 +59,35 @@ py::tuple CompileText(const std::string& text, const std::string& source, const 
   m->source = source;
   m->overrides = overrides;
   return py::make_tuple(m, py::list(), DiagnosticList(r.warnings));
+}
+
+// (model or None, errors, warnings)
+py::tuple CompileText(const std::string& text, const std::string& source, const ParameterOverrides& overrides) {
+  LoadResult r;
+  {
+    py::gil_scoped_release release;
+    r = LoadMechanismText(text, source, overrides);
+  }
+  return LoadedTuple(std::move(r), text, source, overrides);
+}
+
+// A mechanism file or a foreign file (URDF, MJCF, SDFormat, FreeCAD), the latter
+// driven by `drives` (joint → function of t, SI) over `span` (start, end, steps; empty:
+// the importer's default): (model or None, errors, warnings) as CompileText. A
+// foreign model keeps the imported spec's text, so that it pickles as any other.
+py::tuple CompileFile(const std::string& path, const ParameterOverrides& overrides,
+                      const std::vector<std::pair<std::string, std::string>>& drives, const std::vector<double>& span) {
+  importers::ImportOptions foreign;
+  foreign.drives = drives;
+  if (span.size() == 3) foreign.start = span[0], foreign.end = span[1], foreign.steps = static_cast<int>(span[2]);
+  foreign.span_given = span.size() == 3;
+  LoadResult r;
+  std::string imported_text;
+  {
+    py::gil_scoped_release release;
+    r = LoadAnyMechanism(path, overrides, foreign, &imported_text);
+  }
+  return LoadedTuple(std::move(r), imported_text, path, overrides);
 }
 
 // The same model compiled from its spec with other parameter values (no re-parse of
@@ -447,6 +473,8 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def_property_readonly("si", [](const PyMotion& m) { return m.motion->layout().options().si; })
       .def_property_readonly("forces", [](const PyMotion& m) { return m.motion->layout().options().forces; });
   mod.def("compile", &CompileText, py::arg("text"), py::arg("source"), py::arg("overrides") = ParameterOverrides{});
+  mod.def("compile_file", &CompileFile, py::arg("path"), py::arg("overrides"), py::arg("drives"), py::arg("span"));
+  mod.def("foreign_format", [](const std::string& path) { return importers::FormatName(ForeignFormatOf(path)); });
   mod.def("motion_from_state", &MotionFromState, py::arg("model"), py::arg("order"), py::arg("si"), py::arg("bodies"),
           py::arg("outputs"), py::arg("forces"), py::arg("values"), py::arg("complete"), py::arg("stop"),
           py::arg("message"), py::arg("sensitivity") = std::vector<std::string>{});

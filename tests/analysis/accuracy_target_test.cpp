@@ -17,7 +17,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace accuracy_target_test {
 
 using nlohmann::json;
 

@@ -15,7 +15,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace andrews_squeezer_test {
 
 using nlohmann::json;
 

@@ -12,7 +12,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace angle_driver_test {
 
 using nlohmann::json;
 

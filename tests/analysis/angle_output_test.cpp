@@ -11,7 +11,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace angle_output_test {
 
 using nlohmann::json;
 

@@ -15,7 +15,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace assemble_model_test {
 
 using nlohmann::json;
 
@@ -370,7 +370,7 @@ TEST(AssembleModel, MarkerChainOfThousandsOfBodiesAssembles) {
 }  // namespace mechkin
 
 namespace mechkin {
-namespace {
+namespace assemble_model_test {
 
 // mechanisms/four-bar-by-lengths.json (the bundled planar four-bar by its link
 // lengths and a rocker hint): it assembles onto the bundled file's pose — the
@@ -387,7 +387,7 @@ TEST(AssembleModel, FourBarByLengthsFileLandsOnTheBundledPose) {
 }  // namespace mechkin
 
 namespace mechkin {
-namespace {
+namespace assemble_model_test {
 
 // Every variant compiles and assembles again: with_parameters on the crank length
 // gives a newly closed pose whose crank pin lies at the new length and whose rocker

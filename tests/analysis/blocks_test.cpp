@@ -14,7 +14,7 @@
 #include "kinematics/newton.hpp"
 
 namespace mechkin {
-namespace {
+namespace blocks_test {
 
 // Each test writes its own file: ctest runs tests in parallel.
 Model Chain(int n) {

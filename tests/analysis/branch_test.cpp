@@ -8,7 +8,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace branch_test {
 
 // Rocker angle atan2(Cy, Cx − d) of the open (sign = +1) or crossed (−1) assembly.
 double Rocker(double a, double b, double c, double d, double th, double sign) {
@@ -53,7 +53,7 @@ TEST(Branch, HintOnAnUnknownJointIsAnError) {
 #include "analysis/branches.hpp"
 
 namespace mechkin {
-namespace {
+namespace branch_test {
 
 // A four-bar at a given crank angle closes in two ways (open and crossed); so does
 // a slider-crank (the rod on either side of the crank pin). Joints mounted

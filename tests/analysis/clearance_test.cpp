@@ -15,7 +15,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace clearance_test {
 
 using nlohmann::json;
 using testing_files::FromJson;

@@ -12,7 +12,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace closed_form_test {
 
 using testing::TJet;
 

@@ -12,7 +12,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace couplers_test {
 
 using nlohmann::json;
 using testing_files::FromJson;

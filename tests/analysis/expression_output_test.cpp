@@ -17,7 +17,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace expression_output_test {
 
 using testing::TJet;
 
@@ -133,7 +133,9 @@ TEST(ExpressionOutput, SameNumbersInSiAndWithOnlyTheExpressionSelected) {
     for (int k = 0; k <= 3; ++k) {
       const std::string col = std::string(name) + kSuffix[k];
       EXPECT_EQ(si[col], file[col]) << col;
-      if (std::string(name) == "nested") EXPECT_EQ(alone[col], file[col]) << col;
+      if (std::string(name) == "nested") {
+        EXPECT_EQ(alone[col], file[col]) << col;
+      }
     }
   // The SI table's own angle column is in radians, the expression read degrees.
   EXPECT_NEAR(si["rocker_angle"][5] * 180 / M_PI, file["rocker_angle"][5], 1e-9);

@@ -9,7 +9,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace force_units_test {
 
 using nlohmann::json;
 using testing_files::FromJson;

@@ -14,7 +14,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace gear_tooth_force_test {
 
 using nlohmann::json;
 using testing_files::FromJson;

@@ -13,7 +13,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace honest_messages_test {
 
 // The planar four-bar driven at its rocker D, starting at −120° where the rocker
 // (swinging about 60° in all) cannot go: the continuation from the design value 0

@@ -8,7 +8,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace joint_angle_test {
 
 // The screw jack's crank angle column ("turns", deg) and its velocity under `function`.
 std::pair<std::vector<double>, std::vector<double>> Turns(const std::string& function, int steps, double end = 10) {

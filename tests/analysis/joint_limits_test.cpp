@@ -13,7 +13,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace joint_limits_test {
 
 using nlohmann::json;
 using testing_files::FromJson;

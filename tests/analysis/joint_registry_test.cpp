@@ -19,7 +19,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace joint_registry_test {
 
 using nlohmann::json;
 

@@ -10,7 +10,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace limit_test {
 
 TEST(LimitOfMotion, PistonDrivenPastItsStrokeEnd) {
   // tests/data/piston-driven-slider-crank.json: crank 20 mm, rod 50 mm, no offset,

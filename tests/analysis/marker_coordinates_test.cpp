@@ -14,7 +14,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace marker_coordinates_test {
 
 constexpr double kDeg = M_PI / 180;
 constexpr double kCoupler = 120, kRocker = 80, kFrame = 100;

@@ -12,7 +12,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace measured_quantities_test {
 
 using nlohmann::json;
 
@@ -188,7 +188,7 @@ TEST(MeasuredQuantities, CoordinateDriverEqualsTheJointTranslationDriver) {
 }  // namespace mechkin
 
 namespace mechkin {
-namespace {
+namespace measured_quantities_test {
 
 // Planar joint output: the block's slides along the table frame's f, g and its
 // turn about the normal. The table frame at (100, 100, 0) with h = z; the block's

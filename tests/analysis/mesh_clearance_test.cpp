@@ -19,7 +19,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace mesh_clearance_test {
 
 using nlohmann::json;
 using Tri = std::array<Vec3, 3>;

@@ -8,7 +8,7 @@
 #include "analysis/orientation.hpp"
 
 namespace mechkin {
-namespace {
+namespace orientation_test {
 
 const char* kSequences[] = {"XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ"};
 

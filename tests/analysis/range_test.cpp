@@ -7,7 +7,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace range_test {
 
 // Non-Grashof (a, b, c, d) = (60, 60, 50, 90): the crank rocks between the two
 // toggles where coupler and rocker stretch out, |BD| = b + c:

@@ -11,7 +11,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace reselection_test {
 
 using nlohmann::json;
 using Eigen::Matrix3d;

@@ -11,7 +11,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace run_request_test {
 
 using nlohmann::json;
 

@@ -11,7 +11,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace scale_invariance_test {
 
 using nlohmann::json;
 

@@ -12,7 +12,7 @@
 #include "analysis/load.hpp"
 
 namespace mechkin {
-namespace {
+namespace sensitivity_test {
 
 Model Load(const std::string& relative, const ParameterOverrides& set = {}) {
   LoadResult r = LoadMechanismFile(std::string(MECHKIN_SOURCE_DIR) + "/" + relative, set);

@@ -12,7 +12,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace singular_passage_test {
 
 using testing_files::NFourBar;
 

@@ -6,7 +6,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace speed_accuracy_test {
 
 using testing_files::FromJson;
 using testing_files::ReadJson;

@@ -11,7 +11,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace suspension_test {
 
 using V = Eigen::Vector3d;
 using M3 = Eigen::Matrix3d;

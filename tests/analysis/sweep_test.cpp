@@ -11,7 +11,7 @@
 #include "io/sweep_writer.hpp"
 
 namespace mechkin {
-namespace {
+namespace sweep_test {
 
 Model FourBar() {
   LoadResult r = LoadMechanismFile(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-four-bar.json");

@@ -16,7 +16,7 @@
 #include "analysis/load.hpp"
 
 namespace mechkin {
-namespace {
+namespace tolerance_test {
 
 TEST(Tolerance, LinearEnvelopesMatchMonteCarlo) {
   LoadResult r = LoadMechanismFile(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-slider-crank.json");

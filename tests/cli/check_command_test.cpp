@@ -7,7 +7,7 @@
 #include "cli/commands/check_command.hpp"
 
 namespace mechkin {
-namespace {
+namespace check_command_test {
 
 const std::string kSrc = MECHKIN_SOURCE_DIR;
 

@@ -12,7 +12,7 @@
 #include "cli_runner.hpp"
 
 namespace mechkin {
-namespace {
+namespace clearance_cli_test {
 
 using mechkin_test::RunCli;
 using nlohmann::json;

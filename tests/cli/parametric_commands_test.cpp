@@ -13,7 +13,7 @@
 #include "cli/commands/tolerance_command.hpp"
 
 namespace mechkin {
-namespace {
+namespace parametric_commands_test {
 
 const std::string kSlider = std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-slider-crank.json";
 const std::string kFourBar = std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-four-bar.json";

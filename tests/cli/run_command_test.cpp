@@ -7,7 +7,7 @@
 #include "cli/commands/run_command.hpp"
 
 namespace mechkin {
-namespace {
+namespace run_command_test {
 
 const std::string kSrc = MECHKIN_SOURCE_DIR;
 

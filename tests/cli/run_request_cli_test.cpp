@@ -16,7 +16,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace run_request_cli_test {
 
 const std::string kBin = MECHKIN_BINARY;
 const std::string kSrc = MECHKIN_SOURCE_DIR;

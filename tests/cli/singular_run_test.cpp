@@ -13,7 +13,7 @@
 #include "../n_four_bar.hpp"
 
 namespace mechkin {
-namespace {
+namespace singular_run_test {
 
 TEST(SingularRun, CrankEqualsRodStopsAtTheChangePointAtEveryOrder) {
   std::ifstream in(std::string(MECHKIN_SOURCE_DIR) + "/tests/data/slider-crank-equal-links.json");

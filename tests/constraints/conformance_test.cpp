@@ -20,7 +20,7 @@
 #include "test_jet.hpp"
 
 namespace mechkin {
-namespace {
+namespace conformance_test {
 
 using testing::M3;
 using testing::Q4;

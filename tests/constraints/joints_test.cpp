@@ -13,7 +13,7 @@
 #include "kinematics/position.hpp"
 
 namespace mechkin {
-namespace {
+namespace joints_test {
 
 // The conformance harness of the joint types (docs/joints.md): two free bodies at
 // random poses joined by one joint assembled at a random origin/axis: the kernel of

@@ -12,7 +12,7 @@
 #include "analysis/motion.hpp"
 
 namespace mechkin {
-namespace {
+namespace assembly_test {
 
 using testing_files::ReadTestData;
 using testing_files::ReadJson;
@@ -129,7 +129,9 @@ TEST(NearSingular, DeadCentreApproachStaysWithinTheBound) {
       EXPECT_LE(err, last[Col(r, bounds[k])] + 1e-15) << "delta " << delta << " order " << k;
       // Far enough away the results are accurate in absolute terms: at κ ≈ 1e4 the
       // round-off floor of order k is 8u·κ^k (9e-8 for the acceleration).
-      if (delta == 1e-3) EXPECT_LT(err, k < 2 ? 1e-10 : 5e-8) << "order " << k;
+      if (delta == 1e-3) {
+        EXPECT_LT(err, k < 2 ? 1e-10 : 5e-8) << "order " << k;
+      }
     }
   }
 }

@@ -10,7 +10,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace branches_test {
 
 // A planar 4R four-bar (mm) with the crank at theta0_deg at the design pose, upper branch.
 // Closed form (upper assembly branch): rocker angle relative to its design value.

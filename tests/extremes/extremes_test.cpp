@@ -12,7 +12,7 @@
 #include "analysis/motion.hpp"
 
 namespace mechkin {
-namespace {
+namespace extremes_test {
 
 using testing_files::ReadJson;
 using testing_files::FromJson;

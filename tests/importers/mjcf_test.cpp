@@ -10,7 +10,7 @@
 #include "import_test_util.hpp"
 
 namespace mechkin::import_test {
-namespace {
+namespace mjcf_test {
 
 using importers::ForeignFormat;
 

@@ -9,7 +9,7 @@
 #include "import_test_util.hpp"
 
 namespace mechkin::import_test {
-namespace {
+namespace sdf_test {
 
 using importers::ForeignFormat;
 
@@ -139,7 +139,7 @@ TEST(SdfImport, CommandsExitOneAndWriteNothing) {
 }  // namespace mechkin::import_test
 
 namespace mechkin::import_test {
-namespace {
+namespace sdf_test {
 
 // Files in the wild: "--" inside a comment is read; stray text after the root element is
 // skipped with a warning naming the line, as the formats' own parsers do.

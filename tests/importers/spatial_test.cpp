@@ -13,7 +13,7 @@
 #include "math/rotation.hpp"
 
 namespace mechkin::import_test {
-namespace {
+namespace spatial_test {
 
 struct NativeJoint {
   std::string name, body1, body2;

@@ -9,7 +9,7 @@
 #include "import_test_util.hpp"
 
 namespace mechkin::import_test {
-namespace {
+namespace urdf_test {
 
 using importers::ForeignFormat;
 
@@ -280,7 +280,7 @@ TEST(ImportDetection, ExtensionAndContent) {
 }  // namespace mechkin::import_test
 
 namespace mechkin::import_test {
-namespace {
+namespace urdf_test {
 
 // The mimic coupling holds along a run: l2's turn from the ground is θ1 + θ2 with
 // θ2 = 2 θ1 + 0.5 — assembled from the written pose (θ2 = 0), then driven θ1 = t.
@@ -324,7 +324,7 @@ TEST(ImportRobustness, EveryPrefixOfTheFourBarsImportsOrFails) {
 }  // namespace mechkin::import_test
 
 namespace mechkin::import_test {
-namespace {
+namespace urdf_test {
 
 std::string SliderCrankUrdf() { return Source("mechanisms/imported/offset-slider-crank.urdf"); }
 
@@ -359,7 +359,7 @@ TEST(UrdfImport, SliderCrankMatchesNativeClosedFormAndLimits) {
 }  // namespace mechkin::import_test
 
 namespace mechkin::import_test {
-namespace {
+namespace urdf_test {
 
 TEST(UrdfImport, RunWithoutDriveNamesTheJoints) {
   const auto r = mechkin_test::RunCli("run " + FourBarUrdf());

@@ -13,7 +13,7 @@
 #include "io/table_writer.hpp"
 
 namespace mechkin {
-namespace {
+namespace output_file_test {
 
 std::string Dir() {
   static std::string d = [] {

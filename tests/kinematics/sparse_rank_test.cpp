@@ -9,7 +9,7 @@
 #include "kinematics/sparse_rank.hpp"
 
 namespace mechkin {
-namespace {
+namespace sparse_rank_test {
 
 // m × n sparse matrix with a few nonzeros per row; row `copy_of[k]` ≥ 0 makes row k
 // a combination of two earlier rows (a redundant equation).

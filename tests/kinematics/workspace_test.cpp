@@ -11,7 +11,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace workspace_test {
 
 // A tight position solve (named fields, not positional).
 SolveOptions Tight(double tolerance) {

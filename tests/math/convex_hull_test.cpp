@@ -6,7 +6,7 @@
 #include "math/convex_hull.hpp"
 
 namespace mechkin {
-namespace {
+namespace convex_hull_test {
 
 TEST(ConvexHull, CubeWithInteriorPointsHasEightCornersAndSixOutwardQuads) {
   std::vector<Vec3> pts;

@@ -11,7 +11,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace diagnoses_test {
 
 AnalysisReport RunQuietly(const Model& m) {
   return RunKinematicAnalysis(m, AnalysisOptions{}, [](const SystemState&, const StepDiagnostics&) { return true; });

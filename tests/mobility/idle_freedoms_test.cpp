@@ -10,7 +10,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace idle_freedoms_test {
 
 using nlohmann::json;
 

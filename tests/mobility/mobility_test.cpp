@@ -12,7 +12,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace mobility_test {
 
 using testing_files::ReadTestData;
 using testing_files::ReadJson;

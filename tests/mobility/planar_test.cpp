@@ -11,7 +11,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace planar_test {
 
 using nlohmann::json;
 using testing_files::FromJson;

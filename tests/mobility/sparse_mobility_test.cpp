@@ -13,7 +13,7 @@
 #include "../test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace sparse_mobility_test {
 
 using nlohmann::json;
 

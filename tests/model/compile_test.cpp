@@ -16,7 +16,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace compile_test {
 
 using nlohmann::json;
 

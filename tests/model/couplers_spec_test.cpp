@@ -6,7 +6,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace couplers_spec_test {
 
 using nlohmann::json;
 

@@ -3,7 +3,7 @@
 #include "analysis/load.hpp"
 
 namespace mechkin {
-namespace {
+namespace frames_test {
 
 std::string Path(const std::string& name) { return std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/" + name; }
 

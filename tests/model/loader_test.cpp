@@ -3,7 +3,7 @@
 #include "analysis/load.hpp"
 
 namespace mechkin {
-namespace {
+namespace loader_test {
 
 bool HasPointer(const LoadResult& r, const std::string& p) {
   for (const auto& e : r.errors)

@@ -9,7 +9,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace markers_test {
 
 using nlohmann::json;
 

@@ -3,7 +3,7 @@
 #include "analysis/load.hpp"
 
 namespace mechkin {
-namespace {
+namespace orientation_test {
 
 Vec4 LoadOrientation(const std::string& orientation, std::vector<Diagnostic>* warnings = nullptr) {
   const std::string text = R"({"mechkin": 1, "bodies": [{"name": "b", "position": [0, 0, 0], "orientation": )" +

@@ -8,7 +8,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace parameters_test {
 
 using nlohmann::json;
 

@@ -7,7 +7,7 @@
 #include "model/stray_points.hpp"
 
 namespace mechkin {
-namespace {
+namespace stray_points_test {
 
 // The guard as the loader computed it before it became FindStrayJointPoints: every
 // pair of points per joint (cubic in the joints), kept here as the reference.

@@ -13,7 +13,7 @@
 #include "spec/text_position.hpp"
 
 namespace mechkin {
-namespace {
+namespace text_position_test {
 
 // The line and column (code points) of byte `at`, counted here independently.
 TextPosition Expected(const std::string& text, size_t at) {

@@ -6,7 +6,7 @@
 #include "model/time_function.hpp"
 
 namespace mechkin {
-namespace {
+namespace time_function_test {
 
 void ExpectDerivatives(const std::string& text, double t, const std::array<double, 5>& want) {
   const Expression e = Expression::Parse(text);

@@ -4,7 +4,7 @@
 #include "test_files.hpp"
 
 namespace mechkin {
-namespace {
+namespace unit_guards_test {
 
 bool Warns(const LoadResult& r, const std::string& pointer, const std::string& words) {
   for (const auto& w : r.warnings)
@@ -35,7 +35,7 @@ TEST(UnitGuards, DistanceLinkThousandTimesTheMechanism) {
 }  // namespace mechkin
 
 namespace mechkin {
-namespace {
+namespace unit_guards_test {
 
 // The frame pivot typed 1000 for 100: the rocker grows to 869 mm; D is far from every
 // other joint of ground and of the rocker (7× the other links' median, 120 mm).

@@ -3,7 +3,7 @@
 #include "analysis/load.hpp"
 
 namespace mechkin {
-namespace {
+namespace units_test {
 
 TEST(Units, LengthFactors) {
   EXPECT_EQ(*LengthUnitToSi("m"), 1.0);

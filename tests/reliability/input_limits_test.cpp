@@ -13,7 +13,7 @@
 #include "analysis/load.hpp"
 #include "cli_runner.hpp"
 
-namespace {
+namespace input_limits_test {
 
 using mechkin::LoadMechanismText;
 using mechkin::LoadResult;

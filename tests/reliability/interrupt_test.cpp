@@ -12,7 +12,7 @@
 
 #include "cli_runner.hpp"
 
-namespace {
+namespace interrupt_test {
 
 using mechkin_test::RunAndSignal;
 using mechkin_test::SignalledExit;

@@ -9,7 +9,7 @@
 
 #include "cli_runner.hpp"
 
-namespace {
+namespace low_items_test {
 
 using mechkin_test::CliResult;
 using mechkin_test::RunCli;

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace {
+namespace output_safety_test {
 
 const std::string kBin = MECHKIN_BINARY;
 const std::string kMechanisms = std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/";

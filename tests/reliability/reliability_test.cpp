@@ -17,7 +17,7 @@
 
 #include "test_files.hpp"
 
-namespace {
+namespace reliability_test {
 
 using nlohmann::json;
 const std::string kBin = MECHKIN_BINARY;

@@ -15,7 +15,7 @@
 
 #include "cli_runner.hpp"
 
-namespace {
+namespace sweep_merge_test {
 
 using nlohmann::json;
 const std::string kSlider = std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/parametric-slider-crank.json";
@@ -110,7 +110,7 @@ TEST(SweepMerge, MissingAndDuplicatedVariantsAreNamed) {
 
 }  // namespace
 
-namespace {
+namespace sweep_merge_test {
 
 // Issue 24, limits up front: a count beyond a stated limit is an argument error
 // (exit 2) naming the limit, before any variant, sample or step is made.
@@ -140,7 +140,7 @@ TEST(SweepLimits, SamplesMonteCarloAndStepsBeyondTheirLimitsAreArgumentErrors) {
 
 }  // namespace
 
-namespace {
+namespace sweep_merge_test {
 
 // A shard makes its own variants only: the 1e8-variant grid's 1/100000 share runs
 // in a few MB (it took 4.5 GB when every variant was made first). RUSAGE_CHILDREN
@@ -176,7 +176,7 @@ TEST(SweepLimits, ShardedSamplesMergeIntoTheUnshardedSweep) {
 
 }  // namespace
 
-namespace {
+namespace sweep_merge_test {
 
 // Shards carry their sweep's identity: merging shards of different sweeps (another
 // grid of the same size, another version of the file, other --set or --tol) is refused.

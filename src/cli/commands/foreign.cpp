@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 
 #include "cli/commands/load_for_command.hpp"
+#include "io/load_any.hpp"
 #include "io/spec_writer.hpp"
 
 namespace mechkin {
@@ -40,48 +40,6 @@ bool ParseForeignOptions(const ForeignOptions& typed, importers::ImportOptions* 
   }
   out->start = a, out->end = b, out->steps = static_cast<int>(n), out->span_given = true;
   return true;
-}
-
-importers::ForeignFormat ForeignFormatOf(const std::string& path) {
-  if (path == "-") return importers::ForeignFormat::None;
-  std::ifstream in(path, std::ios::binary);
-  if (!in.is_open()) return importers::ForeignFormat::None;  // the loader says why
-  std::string head(4096, '\0');
-  in.read(&head[0], static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  // An empty file is still named by its extension (an empty .urdf is a malformed URDF).
-  return importers::DetectForeignFormat(path, head);
-}
-
-namespace {
-
-Diagnostic FromImport(const importers::ImportMessage& m) { return {m.Place(), m.message, m.fix}; }
-
-// A compile diagnostic of the imported spec, pointed at its source place.
-Diagnostic Located(const importers::ImportResult& imported, Diagnostic d) {
-  const std::string at = imported.OriginOf(d.pointer);
-  if (!at.empty()) d.pointer = at + " (" + (d.pointer.empty() ? "/" : d.pointer) + " of the imported file)";
-  return d;
-}
-
-}  // namespace
-
-LoadResult LoadAnyMechanism(const std::string& path, const ParameterOverrides& overrides,
-                            const importers::ImportOptions& foreign) {
-  if (ForeignFormatOf(path) == importers::ForeignFormat::None) return LoadMechanismFile(path, overrides);
-  const importers::ImportResult imported = importers::ImportFile(path, foreign);
-  LoadResult result;
-  for (const auto& w : imported.warnings) result.warnings.push_back(FromImport(w));
-  if (!imported.ok()) {
-    for (const auto& e : imported.errors) result.errors.push_back(FromImport(e));
-    return result;
-  }
-  LoadResult compiled = CompileMechanism(*imported.spec, overrides);
-  for (auto& w : compiled.warnings) result.warnings.push_back(Located(imported, w));
-  for (auto& e : compiled.errors) result.errors.push_back(Located(imported, e));
-  result.model = std::move(compiled.model);
-  if (!result.errors.empty()) result.model.reset();
-  return result;
 }
 
 bool ForeignOptionsFit(const std::string& path, const importers::ImportOptions& options, std::ostream& err) {
@@ -125,7 +83,7 @@ int RunImportCommand(const ImportCommandOptions& o, std::ostream& out, std::ostr
   if (!imported.ok()) return 1;
   // The written file must load: compile it now, its problems named at their source.
   const LoadResult check = CompileMechanism(*imported.spec);
-  for (const auto& e : check.errors) err << "error: " << Located(imported, e).ToString() << "\n";
+  for (const auto& e : check.errors) err << "error: " << LocatedInSource(imported, e).ToString() << "\n";
   if (!check.ok()) return 1;
   if (!WriteReport(o.output, {o.file}, MechanismSpecJson(*imported.spec), "import", out, err)) return 1;
   return 0;

@@ -12,6 +12,7 @@
 
 #include "analysis/load.hpp"
 #include "importers/importers.hpp"
+#include "io/load_any.hpp"
 
 namespace mechkin {
 
@@ -25,14 +26,6 @@ void AddForeignOptions(CLI::App* cmd, ForeignOptions* options);
 /// False (the problem printed) for a malformed --drive or --span.
 bool ParseForeignOptions(const ForeignOptions& typed, importers::ImportOptions* out, std::ostream& err);
 
-/// The foreign format of `path` (None for a mechanism file, standard input, or a file that cannot be read).
-importers::ForeignFormat ForeignFormatOf(const std::string& path);
-
-/// Loads a mechanism file or a foreign file. A foreign file's problems name their
-/// place (FILE:LINE: <element>) as the diagnostics' pointer, and compile's problems
-/// of the imported spec name the source place they come from.
-LoadResult LoadAnyMechanism(const std::string& path, const ParameterOverrides& overrides,
-                            const importers::ImportOptions& foreign);
 /// `options` given for a file that is not foreign: a message and false.
 bool ForeignOptionsFit(const std::string& path, const importers::ImportOptions& options, std::ostream& err);
 
