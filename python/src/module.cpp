@@ -296,6 +296,24 @@ py::dict Report(const PyMotion& pm) {
     contacts.append(c);
   }
   d["contacts"] = contacts;
+  // The file's reductions (analysis/reduction_result.hpp), in the table's units.
+  py::list reductions;
+  for (const ReductionResult& r : m.reductions) {
+    py::dict x;
+    x["name"] = r.name;
+    x["of"] = r.of;
+    x["reduce"] = ReduceKindName(r.kind);
+    x["value"] = r.value;
+    x["unit"] = r.unit;
+    x["t"] = r.t;
+    x["located"] = r.located;
+    py::dict g;
+    for (size_t k = 0; k < r.wrt.size(); ++k) g[py::str(r.wrt[k])] = r.gradient[k];
+    x["gradient"] = g;
+    x["problem"] = r.problem.empty() ? py::object(py::none()) : py::object(py::str(r.problem));
+    reductions.append(x);
+  }
+  d["reductions"] = reductions;
   py::list reselections;
   for (const auto& r : m.report.reselections) reselections.append(py::make_tuple(r.t, r.set_aside));
   d["reselections"] = reselections;
