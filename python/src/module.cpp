@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "analysis/check_report.hpp"
+#include "analysis/reduction.hpp"
 #include "analysis/count_limits.hpp"
 #include "analysis/enum_names.hpp"
 #include "analysis/motion.hpp"
@@ -232,6 +233,7 @@ std::shared_ptr<PyMotion> MotionFromState(const LoadedModel& m, int order, bool 
   out->motion->stop.kind = StopKind::SolveFailed;
   Parse(stop, &out->motion->stop.kind);
   out->motion->stop.message = message;
+  out->motion->reductions = ComputeReductions(*out->model, *out->motion);  // the rows decide them
   return out;
 }
 

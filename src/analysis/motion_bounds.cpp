@@ -66,7 +66,7 @@ std::vector<ExpectationResult> BoundExpectations(const Model& m, const MotionLay
 void AddMotionBoundCheck(const Model& m, CheckReport* r, const InterruptPoll& stop) {
   if (!r->valid || !m.analysis) return;
   RunRequest request;
-  request.order = 2;  // the jets a quintic Hermite locates the extremum with
+  request.order = 3;  // the jets (to the jerk) a Hermite of degree 7 locates the extremum with
   request.bodies = std::vector<std::string>{""};
   request.forces = ForcesChoice::Off;
   request.keep_step_diagnostics = false;

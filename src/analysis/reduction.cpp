@@ -49,10 +49,10 @@ double HermiteEval(const std::vector<double>& c, double s, int k) {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kOrders = 3;  // value, velocity, acceleration: a quintic Hermite at most
+constexpr int kOrders = 4;  // value, velocity, acceleration, jerk: a Hermite of degree 7 at most
 
 // One row as a reduction reads it: t, and per block (0: the column; 1 + p: its
-// sensitivity to parameter p) the value and its first two time derivatives.
+// sensitivity to parameter p) the value and its first three time derivatives.
 struct Sample {
   double t = 0;
   std::vector<double> d;
@@ -116,7 +116,7 @@ Place Extremum(const Sample& a, const Sample& b, int m, double sign, double* val
 struct ReductionAccumulator::State {
   Reduction r;
   std::vector<int> cols;  // per block and order: the table column, or −1
-  int m = 0;              // jet orders the table has for the column (0..2)
+  int m = 0;              // jet orders the table has for the column (0..3)
   int params = 0;
   std::string unit, problem;
   std::vector<std::string> wrt;
@@ -277,6 +277,7 @@ ReductionResult ReductionAccumulator::State::Result() const {
   out.unit = unit;
   out.rows = static_cast<int>(rows);
   out.problem = problem;
+  out.in_table = cols[0] >= 0;
   out.wrt = wrt;
   out.gradient.assign(params, kNaN);
   if (!problem.empty()) return out;

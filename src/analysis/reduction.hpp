@@ -38,9 +38,9 @@ std::vector<ReductionResult> ComputeReductions(const Model& model, const Motion&
 /// angles; 1 for the others): the expect bounds are in file units whatever --si.
 double FileUnitFactor(const Model& model, const MotionLayout& layout, int column);
 
-/// A cubic (m = 1) or quintic (m = 2) Hermite polynomial on s ∈ [0, 1] through the
-/// values and time derivatives d0[0..m] at t0 and d1[0..m] at t0 + h; coefficients
-/// c[0..2m+1] in s.
+/// The Hermite polynomial of degree 2m + 1 (m = 1 cubic, 2 quintic, 3 septic) on
+/// s ∈ [0, 1] through the values and time derivatives d0[0..m] at t0 and d1[0..m] at
+/// t0 + h; coefficients c[0..2m+1] in s.
 std::vector<double> HermiteCoefficients(const double* d0, const double* d1, int m, double h);
 /// Its value (k = 0) or k-th derivative in s at s.
 double HermiteEval(const std::vector<double>& c, double s, int k = 0);

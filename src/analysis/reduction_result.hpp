@@ -23,6 +23,7 @@ struct ReductionResult {
   bool located = false;
   int rows = 0;          // rows it read
   std::string problem;   // non-empty: no value, and why
+  bool in_table = true;  // false: the table does not show the column (--outputs), so no value
   // d(value)/d(parameter) per TableOptions::sensitivity (empty without --sensitivity).
   std::vector<std::string> wrt;
   std::vector<double> gradient;

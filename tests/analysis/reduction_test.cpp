@@ -83,7 +83,7 @@ TEST(Reduction, TransmissionAngleExtremaAndWhereTheyOccur) {
   EXPECT_NEAR(r.at("mu_max").t, 1.0 / 3.0, 1e-6);
   // The rows alone miss the minimum by h²μ''/8 or so: the location is what makes 1e-7.
   EXPECT_GT(std::abs(Mu(2 * M_PI * (41 * h) + M_PI / 3) - mu_min), 1e-3);
-  // "at" 0.25 s (θ = 150°), between rows 12 and 13: the quintic Hermite of the jets.
+  // "at" 0.25 s (θ = 150°), between rows 12 and 13: the Hermite of the jets to the jerk.
   EXPECT_NEAR(r.at("mu_at").value, Mu(150 * M_PI / 180), 1e-7);
   EXPECT_EQ(r.at("mu_at").t, 0.25);
 }
