@@ -29,6 +29,8 @@ json Transmission() {
   std::ifstream f(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/four-bar-transmission-angle.json");
   json j = json::parse(f);
   j["analysis"]["steps"] = 50;
+  j.erase("expect");
+  j["outputs"].erase(j["outputs"].size() - 1);  // the file's own reduction: the tests add theirs
   j["outputs"].push_back({{"name", "mu_min"}, {"type", "reduction"}, {"of", "transmission"}, {"reduce", "min"}});
   return j;
 }
