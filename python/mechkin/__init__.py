@@ -365,6 +365,8 @@ class Motion:
     names = property(lambda self: [c["name"] for c in self.columns], doc="column names (units in units())")
     contacts = property(lambda self: [Contact(c) for c in self._report.get("contacts", [])],
                         doc="[Contact]: first contacts of clearance outputs' bodies, earliest first")
+    reductions = property(lambda self: {r["name"]: r for r in self._report.get("reductions", [])},
+                          doc="{name: dict}: the file's reductions (value, unit, t, located, gradient, problem)")
     first_contact = property(lambda self: next(iter(self.contacts), None),
                              doc="the earliest Contact, or None")
     t = property(lambda self: self.values[:, 0], doc="time of each row, s")

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "analysis/check_report.hpp"
+#include "analysis/reduction.hpp"
 #include "analysis/count_limits.hpp"
 #include "analysis/enum_names.hpp"
 #include "analysis/motion.hpp"
@@ -258,6 +259,7 @@ std::shared_ptr<PyMotion> MotionFromState(const LoadedModel& m, int order, bool 
   out->motion->stop.kind = StopKind::SolveFailed;
   Parse(stop, &out->motion->stop.kind);
   out->motion->stop.message = message;
+  out->motion->reductions = ComputeReductions(*out->model, *out->motion);  // the rows decide them
   return out;
 }
 
@@ -322,6 +324,24 @@ py::dict Report(const PyMotion& pm) {
     contacts.append(c);
   }
   d["contacts"] = contacts;
+  // The file's reductions (analysis/reduction_result.hpp), in the table's units.
+  py::list reductions;
+  for (const ReductionResult& r : m.reductions) {
+    py::dict x;
+    x["name"] = r.name;
+    x["of"] = r.of;
+    x["reduce"] = ReduceKindName(r.kind);
+    x["value"] = r.value;
+    x["unit"] = r.unit;
+    x["t"] = r.t;
+    x["located"] = r.located;
+    py::dict g;
+    for (size_t k = 0; k < r.wrt.size(); ++k) g[py::str(r.wrt[k])] = r.gradient[k];
+    x["gradient"] = g;
+    x["problem"] = r.problem.empty() ? py::object(py::none()) : py::object(py::str(r.problem));
+    reductions.append(x);
+  }
+  d["reductions"] = reductions;
   py::list reselections;
   for (const auto& r : m.report.reselections) reselections.append(py::make_tuple(r.t, r.set_aside));
   d["reselections"] = reselections;

@@ -10,6 +10,17 @@
 
 namespace mechkin {
 
+namespace {
+
+// "/expect/mobility"; a motion bound's key "min/transmission" is two tokens.
+std::string ExpectPointer(const std::string& key) {
+  const size_t slash = key.find('/');
+  if (slash == std::string::npos) return "/expect/" + EscapeToken(key);
+  return "/expect/" + key.substr(0, slash) + "/" + EscapeToken(key.substr(slash + 1));
+}
+
+}  // namespace
+
 int ExitCodeOf(CheckVerdict verdict) { return verdict == CheckVerdict::Ok ? 0 : 1; }
 
 namespace {
@@ -74,7 +85,7 @@ FileCheck CheckMechanismFile(const std::string& path, const CheckRequest& reques
       LocateDiagnostics(text, &out.report.errors);
       LocateDiagnostics(text, &out.report.warnings);
       for (const ExpectationResult& e : out.report.expectations)
-        out.expect_places.push_back(LocateJsonPointer(text, "/expect/" + EscapeToken(e.key)));
+        out.expect_places.push_back(LocateJsonPointer(text, ExpectPointer(e.key)));
     }
     out.verdict = VerdictOf(out.report);
   } catch (const CheckStopped& s) {

@@ -176,6 +176,7 @@ CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded, const
     r.warnings.push_back({"/joints", r.mobility->verdict, "fix the joints before adding or removing drivers"});
   AddExpectations(m, &r);
   if (m.expect.min_clearance) AddClearanceCheck(m, &r, stop);
+  if (!m.expect.bounds.empty()) AddMotionBoundCheck(m, &r, stop);
   StopPoint(stop, "the clearance sweep");
   AddGeometry(m, &r);
   AddAssembly(m, &r);

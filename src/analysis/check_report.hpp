@@ -14,6 +14,7 @@
 #include "mobility/grubler.hpp"
 #include "mobility/mobility.hpp"
 #include "analysis/load.hpp"
+#include "analysis/reduction_result.hpp"
 
 namespace mechkin {
 
@@ -97,6 +98,18 @@ struct CheckReport {
 /// Sweeps the clearances into r->clearance and checks expect min_clearance
 /// (analysis/clearance_sweep.cpp); `stop` is polled every step (true: the sweep ends).
 void AddClearanceCheck(const Model& m, CheckReport* r, const InterruptPoll& stop = {});
+
+class MotionLayout;
+/// `expect: {"min": {name: v}, "max": {...}}` (docs/format.md "Assertions on the
+/// motion"): the bounds as min/max reductions (each named by its key "min/name").
+std::vector<Reduction> BoundReductions(const Model& m);
+/// Each bound against its reduction over a run in `layout` (`results` from
+/// BoundReductions, in order); `stopped`: why the run ended early ("" complete).
+std::vector<ExpectationResult> BoundExpectations(const Model& m, const MotionLayout& layout,
+                                                 const std::vector<ReductionResult>& results,
+                                                 const std::string& stopped);
+/// `check`: runs the motion (outputs only, file units) and appends the bounds' results.
+void AddMotionBoundCheck(const Model& m, CheckReport* r, const InterruptPoll& stop = {});
 /// Checks one loaded file (never throws for bad input).
 CheckReport CheckLoaded(const std::string& file, const LoadResult& loaded);
 /// Thrown by the stoppable check (CheckLoaded with a poll, analysis/check_file.hpp)

@@ -17,6 +17,7 @@
 
 #include "analysis/clearance.hpp"
 #include "analysis/kinematic_analysis.hpp"
+#include "analysis/reduction_result.hpp"
 
 namespace mechkin {
 
@@ -252,6 +253,7 @@ class Motion : public RowSink {
   bool complete = false;
   MotionStop stop;
   AnalysisReport report;  // assembly, redundancy, blocks, per-step timing
+  std::vector<ReductionResult> reductions;  // the model's reductions over these rows (analysis/reduction.hpp)
 
   bool Append(const double* row, int size) override;
 

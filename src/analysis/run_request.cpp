@@ -6,6 +6,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "analysis/reduction.hpp"
+
 namespace mechkin {
 namespace {
 
@@ -89,6 +91,7 @@ Motion RunPlanned(const Model& model, const RunPlan& plan) {
   motion.report = RunIntoSink(model, plan.analysis, motion.layout(), &motion);
   motion.complete = motion.report.complete;
   motion.stop = StopOf(motion.report);
+  motion.reductions = ComputeReductions(model, motion);
   return motion;
 }
 

@@ -317,10 +317,12 @@ void PrintCheckReport(const CheckReport& r, std::ostream& out) {
   if (!r.valid) PrintErrors(r, out);
   else PrintSummary(r, out);
   for (const auto& w : r.warnings) out << "  warning: " << w.pointer << ": " << w.message << "\n";
-  for (const auto& e : r.expectations)
-    out << "  expect " << e.key << " = " << ValueJson(e.expected).dump() << ": "
-        << (e.held ? "held" : "FAILED (actual " + ValueJson(e.actual).dump() + ")")
-        << (e.where.empty() ? "" : ": " + e.where) << "\n";
+  for (const auto& e : r.expectations) out << "  " << ExpectationLine(e) << "\n";
+}
+
+std::string ExpectationLine(const ExpectationResult& e) {
+  return "expect " + e.key + " = " + ValueJson(e.expected).dump() + ": " +
+         (e.held ? "held" : "FAILED (actual " + ValueJson(e.actual).dump() + ")") + (e.where.empty() ? "" : ": " + e.where);
 }
 
 }  // namespace mechkin

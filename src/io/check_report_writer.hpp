@@ -20,4 +20,8 @@ std::string CheckReportsJsonText(const std::vector<CheckReport>& reports);
 /// The human-readable report of one file.
 void PrintCheckReport(const CheckReport& report, std::ostream& out);
 
+/// "expect mobility = 1: held", "expect min/mu = 40.0: FAILED (actual 26.4): where":
+/// one expectation as `check` prints it (and `run` its motion bounds).
+std::string ExpectationLine(const ExpectationResult& e);
+
 }  // namespace mechkin

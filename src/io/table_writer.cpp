@@ -92,11 +92,47 @@ bool TableWriter::Append(const double* row, int size) {
   return file_->Write(buffer_.data(), static_cast<size_t>(out - buffer_.data()));
 }
 
-bool TableWriter::Finish(const std::string& partial_note, std::string* error) {
+namespace {
+
+std::string JsonNumber(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+// ,"reductions":[...]: one object per reduction, NaN as null.
+std::string ReductionsJson(const std::vector<ReductionResult>& reductions) {
+  if (reductions.empty()) return "";
+  std::string out = ",\"reductions\":[";
+  for (size_t k = 0; k < reductions.size(); ++k) {
+    const ReductionResult& r = reductions[k];
+    out += std::string(k ? "," : "") + "{\"name\":\"" + JsonEscape(r.name) + "\",\"of\":\"" + JsonEscape(r.of) +
+           "\",\"reduce\":\"" + ReduceKindName(r.kind) + "\",\"value\":" + JsonNumber(r.value) + ",\"unit\":\"" +
+           JsonEscape(r.unit) + "\"";
+    if (r.kind != ReduceKind::Rms && r.kind != ReduceKind::Mean) out += ",\"t\":" + JsonNumber(r.t);
+    if (r.kind == ReduceKind::Min || r.kind == ReduceKind::Max) out += std::string(",\"located\":") + (r.located ? "true" : "false");
+    if (!r.wrt.empty()) {
+      out += ",\"gradient\":{";
+      for (size_t p = 0; p < r.wrt.size(); ++p)
+        out += std::string(p ? "," : "") + "\"" + JsonEscape(r.wrt[p]) + "\":" + JsonNumber(r.gradient[p]);
+      out += "}";
+    }
+    if (!r.problem.empty()) out += ",\"problem\":\"" + JsonEscape(r.problem) + "\"";
+    out += "}";
+  }
+  return out + "]";
+}
+
+}  // namespace
+
+bool TableWriter::Finish(const std::string& partial_note, std::string* error,
+                         const std::vector<ReductionResult>& reductions) {
   const bool partial = !partial_note.empty();
   if (format_ == TableFormat::Csv) return file_->Commit(partial ? "# PARTIAL TABLE: " + partial_note + "\n" : "", error);
   std::string tail = "],\"mechkin_table\":1";
   if (partial) tail += ",\"note\":\"" + JsonEscape(partial_note) + "\"";
+  tail += ReductionsJson(reductions);
   tail += std::string(",\"partial\":") + (partial ? "true" : "false") + "}\n";
   file_->Write(tail);
   return file_->Commit("", error);
@@ -108,7 +144,7 @@ bool WriteMotion(const Motion& motion, TableFormat format, const std::string& pa
   if (!file.Open(path, inputs, error)) return false;
   TableWriter writer(motion.layout(), format, &file);
   for (int r = 0; r < motion.rows(); ++r) writer.Append(&motion.values()[static_cast<size_t>(r) * motion.cols()], motion.cols());
-  return writer.Finish(motion.complete ? "" : motion.stop.Summary(), error);
+  return writer.Finish(motion.complete ? "" : motion.stop.Summary(), error, motion.reductions);
 }
 
 }  // namespace mechkin

@@ -5,7 +5,8 @@
 // CSV: the header line of column names with units ("t [s]", "crank.x_t [mm/s]"),
 // then one line per row; a table that ends early is preceded by
 // "# PARTIAL TABLE: <why>". JSON: {"columns": [{"name", "unit"}...], "rows": [[...]],
-// "mechkin_table": 1, "partial": bool, "note"?: why}.
+// "mechkin_table": 1, "partial": bool, "note"?: why, "reductions"?: [{"name", "of",
+// "reduce", "value", "unit", "t"?, "located"?, "gradient"?, "problem"?}]}.
 #pragma once
 
 #include <string>
@@ -23,7 +24,8 @@ class TableWriter : public RowSink {
   TableWriter(const MotionLayout& layout, TableFormat format, OutputFile* file);
   bool Append(const double* row, int size) override;
   /// Ends the table and commits the file; `partial_note` non-empty marks it partial.
-  bool Finish(const std::string& partial_note, std::string* error);
+  /// JSON: `reductions` become the table's "reductions" array (docs/format.md "Reductions").
+  bool Finish(const std::string& partial_note, std::string* error, const std::vector<ReductionResult>& reductions = {});
 
  private:
   // to_chars' shortest round-trip form of a double is at most 24 characters.

@@ -34,6 +34,7 @@ std::optional<Model> Compiler::Run() {
   for (const DriverSpec& d : spec_.drivers) Place(Section::Drivers, d.pointer), CompileDriver(d);
   CompileAnalysis();
   for (const OutputSpec& o : spec_.outputs) Place(Section::Outputs, o.pointer), CompileOutput(o);
+  for (const OutputSpec* o : pending_reductions_) Place(Section::Outputs, o->pointer), CompileReduction(*o);
   CompileExpect();
   CompileGravity();
   CompileView();
@@ -349,6 +350,23 @@ void Compiler::CompileExpect() {
   model_.expect.idle = Integer(e.idle, "idle");
   model_.expect.driven = e.driven;
   if (const auto c = Value(e.min_clearance)) model_.expect.min_clearance = *c * length_;
+  CompileBounds(e.min, true);
+  CompileBounds(e.max, false);
+}
+
+// "min"/"max": {name: v}, v in the column's unit in the file's units (kept so).
+void Compiler::CompileBounds(const std::vector<std::pair<std::string, Scalar>>& bounds, bool is_min) {
+  const std::string base = is_min ? "/expect/min/" : "/expect/max/";
+  for (const auto& [key, scalar] : bounds) {
+    MotionBound b;
+    b.key = key;
+    b.is_min = is_min;
+    const std::optional<double> v = Value(scalar);
+    const bool named = ResolveColumnName(key, base + key, is_min ? "expect min" : "expect max", &b.column);
+    if (!v || !named) continue;
+    b.value = *v;
+    model_.expect.bounds.push_back(b);
+  }
 }
 
 // "gravity": [gx, gy, gz] in length/s².

@@ -53,6 +53,7 @@ void Compiler::CompileOutput(const OutputSpec& o) {
   bool ok = name && o.type;
   if (name) ok = CheckOutputName(*name, o.pointer) && ok;
   if (!ok) return;
+  if (*o.type == "reduction") return pending_reductions_.push_back(&o);  // after every output
   Output out;
   if (!CompileOutputGeometry(o, &out)) return;
   out.name = *name;
@@ -343,6 +344,82 @@ bool Compiler::CompileExpressionOutput(const OutputSpec& o, Output* out) {
     return false;
   }
   return true;
+}
+
+}  // namespace mechkin
+
+namespace mechkin {
+
+// A reduction's `of` or an `expect` bound's key: a single-valued output, or "P.x" (.y,
+// .z) of a point output — any output of the file, since both are read after the run.
+// `what` names the place in messages ("'of'", "expect min"). False (reported) when not.
+bool Compiler::ResolveColumnName(const std::string& name, const std::string& ptr, const std::string& what,
+                                 OutputColumn* in) {
+  in->output = OutputIndex(model_, name);
+  if (in->output >= 0 && SingleValued(model_, model_.outputs[in->output])) return true;
+  const size_t dot = name.find('.');
+  const int base = in->output >= 0 ? in->output : dot == std::string::npos ? -1 : OutputIndex(model_, name.substr(0, dot));
+  const bool point = base >= 0 && model_.outputs[base].kind == OutputKind::Point;
+  if (point && in->output < 0) {
+    const std::string comp = name.substr(dot + 1);
+    if (comp == "x" || comp == "y" || comp == "z") return *in = {base, comp == "x" ? 0 : comp == "y" ? 1 : 2}, true;
+  }
+  if (base >= 0) {
+    Error(ptr, what + " names output '" + name + "', which has several coordinates",
+          point ? "name one of them: " + model_.outputs[base].name + ".x, .y or .z"
+                : "name a single-valued output (a joint angle or slide, a distance, an angle, a clearance, an "
+                  "expression, a velocity ratio) or a point's coordinate (P.x)");
+    return false;
+  }
+  std::vector<std::string> known;
+  for (const Output& o : model_.outputs) known.push_back(o.name);
+  const bool reduction = std::any_of(model_.reductions.begin(), model_.reductions.end(),
+                                     [&](const Reduction& r) { return r.name == name; });
+  const std::string guess = DidYouMean(name, known);
+  Error(ptr, reduction ? what + " names the reduction '" + name + "': reductions read the table's columns"
+                       : what + " names no output '" + name + "'",
+        guess.empty() ? "name a column output of the file (a point's coordinate as P.x)"
+                      : "did you mean '" + guess + "'?");
+  return false;
+}
+
+// {"type": "reduction", "of", "reduce", "t"}: after every output, so `of` may name any
+// of them. `t` goes with "at" only and lies in the analysis span.
+void Compiler::CompileReduction(const OutputSpec& o) {
+  const std::string& ptr = o.pointer;
+  static const std::vector<std::string> kinds = {"min", "max", "rms", "mean", "at"};
+  Reduction r;
+  r.name = *o.name;
+  r.of = o.of.value_or("");
+  bool ok = o.of && ResolveColumnName(*o.of, ptr + "/of", "'of'", &r.column);
+  const auto kind = o.reduce ? std::find(kinds.begin(), kinds.end(), *o.reduce) : kinds.end();
+  if (o.reduce && kind == kinds.end()) {
+    const std::string g = DidYouMean(*o.reduce, kinds);
+    Error(ptr + "/reduce", "unknown reduction '" + Shorten(*o.reduce) + "'",
+          (g.empty() ? "" : "did you mean '" + g + "'? ") + "use one of " + Join(kinds));
+    ok = false;
+  }
+  if (!o.reduce || kind == kinds.end()) return;
+  r.kind = static_cast<ReduceKind>(kind - kinds.begin());
+  if (r.kind == ReduceKind::At && !o.t) {
+    Error(ptr, "a reduction \"at\" needs 't'", "add \"t\": the time (s) to read the column at");
+    ok = false;
+  } else if (r.kind != ReduceKind::At && o.t) {
+    Error(ptr + "/t", "'t' goes with \"reduce\": \"at\" only", "remove 't' (a \"" + *o.reduce + "\" is over the whole run)");
+    ok = false;
+  } else if (o.t) {
+    const std::optional<double> t = Value(o.t);
+    const Analysis* a = model_.analysis ? &*model_.analysis : nullptr;
+    if (!t) return;
+    if (a && (*t < a->start || *t > a->end)) {
+      Error(ptr + "/t", "t = " + FormatNumber(*t) + " s is outside the run (" + FormatNumber(a->start) + " to " +
+                            FormatNumber(a->end) + " s)",
+            "give a time within /analysis start and end");
+      ok = false;
+    }
+    r.t = *t;
+  }
+  if (ok) model_.reductions.push_back(r);
 }
 
 }  // namespace mechkin

@@ -135,6 +135,10 @@ class Compiler {
   bool CompileExpressionOutput(const OutputSpec& o, Output* out);
   bool ResolveExpressionName(const std::string& name, const std::string& ptr, ExpressionInput* in);
   void UnknownExpressionName(const std::string& name, const std::string& ptr);
+  bool ResolveColumnName(const std::string& name, const std::string& ptr, const std::string& what, OutputColumn* in);
+  void CompileReduction(const OutputSpec& o);
+  void CompileBounds(const std::vector<std::pair<std::string, Scalar>>& bounds, bool is_min);
+  std::vector<const OutputSpec*> pending_reductions_;
   bool CompileOutputGeometry(const OutputSpec& o, Output* out);
   bool CompileJointOutput(const OutputSpec& o, Output* out);
   bool CompileVelocityRatio(const OutputSpec& o, Output* out);

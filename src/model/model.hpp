@@ -233,10 +233,36 @@ struct Parameter {
   bool overridden = false;             // value set by --set / with_parameters
 };
 
+/// A column an output contributes (a reduction's `of`, an `expect` bound's key), as an
+/// expression reads it.
+using OutputColumn = ExpressionInput;
+
+/// `expect: {"min": {name: v}}` (the column's minimum over the run ≥ v) or "max" (≤ v),
+/// v in the column's unit in the file's units (docs/format.md "Assertions on the motion").
+struct MotionBound {
+  std::string key;  // the output name as written ("tip.x")
+  OutputColumn column;
+  bool is_min = true;
+  double value = 0;
+};
+
 struct Expect {
   std::optional<int> grubler, mobility, redundant, idle;
   std::optional<std::string> driven;  // "full", "under", "over"
   std::optional<double> min_clearance;  // m: every clearance along the motion at least this
+  std::vector<MotionBound> bounds;      // "min" then "max", each in file order
+};
+
+enum class ReduceKind { Min, Max, Rms, Mean, At };
+
+/// {"type": "reduction", "of", "reduce", "t"}: one number per run from a column
+/// (docs/format.md "Reductions"; computed by analysis/reduction.hpp).
+struct Reduction {
+  std::string name;
+  std::string of;  // the column's output name as written ("transmission", "tip.x")
+  OutputColumn column;
+  ReduceKind kind = ReduceKind::Min;
+  double t = 0;  // At: the time (s)
 };
 
 /// How `mechkin view` shows the model (the file's "view"; no effect on the motion).
@@ -255,6 +281,7 @@ struct Model {
   std::vector<Coupler> couplers;  // between joint coordinates, after the joints in Φ
   std::vector<Driver> drivers;
   std::vector<Output> outputs;
+  std::vector<Reduction> reductions;  // "reduction" outputs: per run, not per row
   Vec3 gravity = Vec3::Zero();  // m/s²
   std::vector<Load> loads;
   /// Inertia or loads given: the run also computes driver efforts and reactions.

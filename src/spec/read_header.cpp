@@ -153,11 +153,30 @@ void ReadAnalysis(JsonReader& rd, const json& doc, MechanismSpec* spec) {
   spec->analysis = std::move(an);
 }
 
+namespace {
+
+// "min": {"transmission": 40}: per output name, a bound on its column over the run.
+void ReadBounds(JsonReader& rd, const json& e, const char* key, std::vector<std::pair<std::string, Scalar>>* out) {
+  if (!e.contains(key)) return;
+  const std::string ptr = std::string("/expect/") + key;
+  const json& b = e.at(key);
+  if (!b.is_object()) {
+    rd.Error(ptr, std::string("'") + key + "' must be an object of output names and numbers",
+             std::string("write \"") + key + "\": {\"transmission\": 40}");
+    return;
+  }
+  for (auto it = b.begin(); it != b.end(); ++it)
+    if (auto v = rd.Number(b, it.key(), ptr)) out->emplace_back(it.key(), *v);
+}
+
+}  // namespace
+
 void ReadExpect(JsonReader& rd, const json& doc, MechanismSpec* spec) {
   rd.diagnostics().SetPlace(Section::Expect);
   if (!doc.contains("expect")) return;
   const json& e = doc.at("expect");
-  if (!rd.CheckObject(e, "/expect", {"grubler", "mobility", "redundant", "idle", "driven", "min_clearance"}, {},
+  if (!rd.CheckObject(e, "/expect", {"grubler", "mobility", "redundant", "idle", "driven", "min_clearance", "min", "max"},
+                      {},
                       "'expect'"))
     return;
   ExpectSpec ex;
@@ -166,6 +185,8 @@ void ReadExpect(JsonReader& rd, const json& doc, MechanismSpec* spec) {
   ex.redundant = rd.Integer(e, "redundant", "/expect");
   ex.idle = rd.Integer(e, "idle", "/expect");
   ex.min_clearance = rd.Number(e, "min_clearance", "/expect");
+  ReadBounds(rd, e, "min", &ex.min);
+  ReadBounds(rd, e, "max", &ex.max);
   if (auto s = rd.String(e, "driven", "/expect")) {
     if (*s == "full" || *s == "under" || *s == "over")
       ex.driven = *s;

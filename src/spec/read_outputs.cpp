@@ -29,16 +29,18 @@ bool OutputKeys(JsonReader& rd, const std::optional<std::string>& type, const st
     return add({"body1", "vector1", "body2", "vector2", "about"}, {"body1", "vector1", "body2", "vector2"});
   if (type && *type == "clearance") return add({"body1", "body2"}, {"body1", "body2"});
   if (type && *type == "expression") return add({"value"}, {"value"});
+  if (type && *type == "reduction") return add({"of", "reduce", "t"}, {"of", "reduce"});
   if (type) {
-    const std::vector<std::string> types = {"point",       "joint",     "distance",  "angle", "velocity_ratio",
-                                            "orientation", "clearance", "expression"};
+    const std::vector<std::string> types = {"point",       "joint",      "distance",  "angle",
+                                            "velocity_ratio", "orientation", "clearance", "expression",
+                                            "reduction"};
     const std::string g = DidYouMean(*type, types);
     rd.Error(ptr + "/type", "unknown output type '" + Shorten(*type) + "'",
              (g.empty() ? "" : "did you mean '" + g + "'? ") + "types: " + Join(types));
   }
   allowed->insert(allowed->end(), {"body", "point", "joint", "body1", "point1", "body2", "point2", "vector1",
                                    "vector2", "about", "frame", "output", "input", "relative_to", "sequence",
-                                   "value"});
+                                   "value", "of", "reduce", "t"});
   return false;
 }
 
@@ -164,13 +166,15 @@ void ReadOutput(JsonReader& rd, const json& o, const std::string& ptr, Mechanism
   const StringField strings[] = {{"body", &out.body}, {"frame", &out.frame}, {"joint", &out.joint},
                             {"body1", &out.body1}, {"body2", &out.body2}, {"output", &out.output},
                             {"input", &out.input}, {"relative_to", &out.relative_to}, {"sequence", &out.sequence},
-                            {"marker", &out.marker}, {"value", &out.value}};
+                            {"marker", &out.marker}, {"value", &out.value}, {"of", &out.of},
+                            {"reduce", &out.reduce}};
   for (auto [key, field] : strings)
     if (has(key)) *field = rd.String(o, key, ptr);
   const VectorField vectors[] = {{"point", &out.point}, {"point1", &out.point1}, {"point2", &out.point2},
                             {"vector1", &out.vector1}, {"vector2", &out.vector2}, {"about", &out.about}};
   for (auto [key, field] : vectors)
     if (has(key)) *field = rd.Vector(o, key, ptr);
+  if (has("t")) out.t = rd.Number(o, "t", ptr);
   spec->outputs.push_back(std::move(out));
 }
 

@@ -171,6 +171,8 @@ struct OutputSpec {
   std::optional<std::string> name, type;
   std::optional<std::string> body, frame, joint, body1, body2, output, input, relative_to, sequence, marker;
   std::optional<std::string> value;  // "expression": the text over earlier outputs, parameters and t
+  std::optional<std::string> of, reduce;  // "reduction": the output reduced and how (min max rms mean at)
+  std::optional<Scalar> t;                // "reduction" "at": the time (s)
   std::optional<Vector3Spec> point, point1, point2, vector1, vector2, about;
   std::string pointer;
 };
@@ -212,6 +214,8 @@ struct ExpectSpec {
   std::optional<Scalar> grubler, mobility, redundant, idle;
   std::optional<std::string> driven;
   std::optional<Scalar> min_clearance;  // file length units: `check` sweeps the clearances
+  // "min": {output: v}, "max": {output: v}: bounds on a column over the run (its units), keys in file order
+  std::vector<std::pair<std::string, Scalar>> min, max;
 };
 
 /// "view": how `mechkin view` shows the file (the motion does not depend on it).

@@ -9,10 +9,13 @@
 #include <sstream>
 
 #include "analysis/enum_names.hpp"
+#include "analysis/check_report.hpp"
 #include "analysis/motion.hpp"
+#include "analysis/reduction.hpp"
 #include "cli/commands/load_for_command.hpp"
 #include "cli/commands/request_options.hpp"
 #include "io/async_sink.hpp"
+#include "io/check_report_writer.hpp"
 #include "io/interrupt.hpp"
 #include "io/table_writer.hpp"
 #include "mobility/grubler.hpp"
@@ -223,6 +226,42 @@ bool PlanFor(const RunOptions& o, const Model& model, RunPlan* plan, std::ostrea
   return true;
 }
 
+// The file's reductions on stderr, one line each (the JSON table carries them too).
+void PrintReductions(const std::vector<ReductionResult>& results, std::ostream& err) {
+  for (const ReductionResult& r : results) {
+    std::ostringstream line;
+    line.precision(12);
+    line << "mechkin run: " << r.name << " = " << ReduceKindName(r.kind) << " of " << r.of;
+    if (!r.problem.empty()) {
+      err << line.str() << ": not computed: " << r.problem << "\n";
+      continue;
+    }
+    line << ": " << r.value << (r.unit.empty() ? "" : " " + r.unit);
+    if (r.kind != ReduceKind::Rms && r.kind != ReduceKind::Mean) line << " at t = " << r.t << " s";
+    for (size_t k = 0; k < r.wrt.size(); ++k) line << (k ? ", " : "; ") << "d/d(" << r.wrt[k] << ") = " << r.gradient[k];
+    err << line.str() << "\n";
+  }
+}
+
+// expect "min"/"max" on the table's rows: each failure on stderr, as `check` prints it.
+bool BoundsHeld(const Model& model, const MotionLayout& layout, const ReductionAccumulator& bounds,
+                const std::string& stopped, const std::string& file, std::ostream& err) {
+  bool held = true;
+  const std::vector<ReductionResult> results = bounds.Finish();
+  const std::vector<ExpectationResult> checked = BoundExpectations(model, layout, results, stopped);
+  for (size_t k = 0; k < checked.size(); ++k) {
+    const ExpectationResult& e = checked[k];
+    if (e.held) continue;
+    if (!results[k].in_table) {  // `--outputs` left it out: `check` checks it
+      err << "mechkin run: note: expect " << e.key << " not checked: " << results[k].problem << "\n";
+      continue;
+    }
+    held = false;
+    err << "mechkin run: " << file << ": " << ExpectationLine(e) << "\n";
+  }
+  return held;
+}
+
 }  // namespace
 
 int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
@@ -252,12 +291,15 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   ProgressBar progress(err, model.analysis ? model.analysis->steps + 1 : 0);
   ConditioningWatch watch(plan.analysis.order, plan.analysis.tolerance);
   std::vector<StepDiagnostics> steps;
+  ReductionAccumulator reductions(model, *layout), bounds(model, *layout, BoundReductions(model));
   const AnalysisReport rep = RunKinematicAnalysis(model, plan.analysis,
                                                   [&](const SystemState& s, const StepDiagnostics& d) {
     eval.Evaluate(s, d, row.data());
     progress.Row();
     watch.Row(d);
     if (o.stats) steps.push_back(d);
+    reductions.Row(row.data());
+    bounds.Row(row.data());
     return rows_out.Append(row.data(), layout->size()) && !InterruptRequested();
   }, [&](const SystemState& s) { eval.Follow(s); });
   const bool rows_written = rows_out.Drain();
@@ -269,12 +311,15 @@ int RunRun(const RunOptions& o, std::ostream& out, std::ostream& err) {
   const bool interrupted = InterruptRequested();
   std::string note = rep.complete ? "" : interrupted ? "interrupted (SIGINT)" : rep.message.substr(0, rep.message.find('\n'));
   if (!rep.complete && note.empty()) note = "the run stopped early";
-  if (!writer.Finish(note, &why) || !rows_written) {
+  const std::vector<ReductionResult> reduced = reductions.Finish();
+  PrintReductions(reduced, err);
+  if (!writer.Finish(note, &why, reduced) || !rows_written) {
     if (why.empty()) why = "writing the table failed";
     err << "mechkin run: " << why << "\n";
     return 1;
   }
-  return rep.complete ? 0 : interrupted ? 130 : 1;
+  const bool held = BoundsHeld(model, *layout, bounds, note, o.file, err);
+  return !rep.complete ? (interrupted ? 130 : 1) : held ? 0 : 1;
 }
 
 }  // namespace mechkin
