@@ -47,11 +47,7 @@ std::vector<ExpectationResult> BoundExpectations(const Model& m, const MotionLay
       e.where = r.problem;
     } else {
       // The bound is in the file's units; the table may be in SI (--si).
-      const int col = [&] {
-        for (int i = 0; i < layout.size(); ++i)
-          if (layout.columns()[i].unit == r.unit && layout.columns()[i].order == 0) return i;
-        return -1;
-      }();
+      const int col = ValueColumnOf(m, layout, b.column);
       const double f = col >= 0 ? FileUnitFactor(m, layout, col) : 1;
       const double actual = r.value * f;
       e.actual = ExpectValue::Of(actual);

@@ -130,12 +130,13 @@ struct ReductionAccumulator::State {
   Place at_place;
   Sample at_a, at_b;
 
-  Sample Read(const double* row, int t_col) const {
-    Sample s;
-    s.t = row[t_col];
-    s.d.resize(cols.size());
-    for (size_t i = 0; i < cols.size(); ++i) s.d[i] = cols[i] >= 0 ? row[cols[i]] : kNaN;
-    return s;
+  Sample cur;  // the row being read, reused: no allocation per row once sized
+
+  // Fills `cur` from a table row (column t_col is t).
+  void Read(const double* row, int t_col) {
+    cur.t = row[t_col];
+    cur.d.resize(cols.size());
+    for (size_t i = 0; i < cols.size(); ++i) cur.d[i] = cols[i] >= 0 ? row[cols[i]] : kNaN;
   }
   void MinMax(const Sample& cur);
   void Trapezoid(const Sample& cur);
@@ -162,6 +163,10 @@ int OutputColumnOf(const MotionLayout& layout, const OutputColumn& c, bool point
 }
 
 }  // namespace
+
+int ValueColumnOf(const Model& model, const MotionLayout& layout, const OutputColumn& column) {
+  return OutputColumnOf(layout, column, model.outputs[column.output].kind == OutputKind::Point, 0);
+}
 
 ReductionAccumulator::ReductionAccumulator(const Model& model, const MotionLayout& layout, std::vector<Reduction> which) {
   const std::vector<std::string>& params = layout.options().sensitivity;
@@ -194,7 +199,8 @@ ReductionAccumulator::~ReductionAccumulator() = default;
 void ReductionAccumulator::Row(const double* row) {
   for (State& s : states_) {
     if (!s.problem.empty()) continue;
-    const Sample cur = s.Read(row, 0);  // column 0 is t
+    s.Read(row, 0);  // column 0 is t
+    const Sample& cur = s.cur;
     if (s.r.kind == ReduceKind::Min || s.r.kind == ReduceKind::Max) s.MinMax(cur);
     else if (s.r.kind == ReduceKind::At) s.At(cur);
     else s.Trapezoid(cur);

@@ -34,6 +34,11 @@ class ReductionAccumulator {
 /// The model's reductions over a whole Motion (RunPlanned fills Motion::reductions so).
 std::vector<ReductionResult> ComputeReductions(const Model& model, const Motion& motion);
 
+/// The table column of an output column's value (time-derivative order 0, no
+/// sensitivity): a point's coordinate by its component, a single-valued output's
+/// series; −1 when the table does not show it.
+int ValueColumnOf(const Model& model, const MotionLayout& layout, const OutputColumn& column);
+
 /// Factor from a column's table unit to its unit in the file's units (lengths and
 /// angles; 1 for the others): the expect bounds are in file units whatever --si.
 double FileUnitFactor(const Model& model, const MotionLayout& layout, int column);
