@@ -3,12 +3,15 @@
 
 namespace mechkin {
 
-/// With κ the condition estimate, r the scaled residual and u the unit round-off:
-///   e_0 = κ·max(r, 4u),   e_k = 8u·κ^k + κ·e_0   (k ≥ 1):
-/// round-off of each back-solve is amplified by κ and enters the next order's
-/// right-hand side; the position error e_0 perturbs Φ_q itself, costing one more κ.
-/// Relative to the magnitude of q^(k) over the motion. Checked against closed forms
-/// near a dead centre in tests/extremes/assembly_test.cpp. Fills bound[0..max_order].
+/// With κ the (sharper) condition estimate, r the scaled residual and u the unit
+/// round-off (constraints.md §8):
+///   e_0 = κ·max(r, 4u),   e_k = k!·κ^k·(16u + e_0)   (k ≥ 1):
+/// q^(k) is a function of the pose through k nested solves with Φ_q, so the pose's
+/// error and each solve's round-off are amplified by about κ per order. Relative to
+/// the magnitude of q^(k) over the motion. Near singular positions the rows take
+/// measured bounds instead (row_error_estimate.hpp). Checked against closed forms in
+/// python/tests/test_error_bounds.py and tests/extremes/assembly_test.cpp.
+/// Fills bound[0..max_order].
 void CalcErrorBounds(double condition, double residual, int max_order, double* bound);
 
 /// The scaled residual at which the residual's share of those bounds meets the

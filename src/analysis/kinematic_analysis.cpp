@@ -11,6 +11,7 @@
 #include "analysis/clearance.hpp"
 #include "spec/diagnostic.hpp"
 #include "analysis/error_bounds.hpp"
+#include "analysis/row_error_estimate.hpp"
 #include "analysis/row_selection.hpp"
 #include "analysis/singular_points.hpp"
 #include "analysis/step_observer.hpp"
@@ -112,6 +113,13 @@ constexpr int kMaxReselectColumns = 1200;  // 200 bodies: the dense QR of the se
 // Rows whose condition estimate reaches this, with 1/κ heading for zero, have the
 // step before them examined for a singular position (bundled mechanisms stay below 40).
 constexpr double kExamineCondition = 50;
+// Rows whose condition estimate reaches both have their error bounds measured
+// (row_error_estimate.hpp) instead of taken from κ alone: there a derivative's error
+// grows faster than the a priori bound's powers of κ (bundled mechanisms: a few rows
+// of four of them).
+constexpr double kMeasureBoundsCondition = 20;
+constexpr double kMeasureBoundsGrowth = 2;
+constexpr int kSharperSteps = 2;
 // A pose whose set-aside (redundant) equations miss by more than this many position
 // tolerances is off the mechanism (Stepper::SetAsideCloses).
 constexpr double kSetAsideFactor = 10;
@@ -138,6 +146,7 @@ class Stepper {
     if (options.forces) observers_.push_back(MakeForceObserver(ws_->system(), selection_, options.order));
     if (sensitivity) observers_.push_back(MakeSensitivityObserver(std::move(sensitivity)));
     if (auto limits = MakeJointLimitObserver(model_, options)) observers_.push_back(std::move(limits));
+    errors_ = std::make_unique<RowErrorEstimator>(ws_->system(), options.order);
     solve_.tolerance = options.tolerance;
     solve_.max_iterations = options.max_iterations;
     predictor_ = std::min(options.predictor_order, options.order);
@@ -156,6 +165,9 @@ class Stepper {
   double UpdateSetAsideResidual();
   void CheckSetAsideOnSolvedBodies();
   void FinishDiagnostics(StepDiagnostics* diag);
+  bool MeasuresBounds(double condition) const {
+    return condition >= kMeasureBoundsCondition && condition >= kMeasureBoundsGrowth * bounds_regular_;
+  }
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
   bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
   bool StopAtLimitOrSingularity(Outcome out, double t, double bad_t, AnalysisReport* rep);
@@ -194,6 +206,9 @@ class Stepper {
   double step_sign_ = 0;
   bool step_have_sign_ = false;
   std::vector<std::unique_ptr<StepObserver>> observers_;
+  std::unique_ptr<RowErrorEstimator> errors_;  // the measured bounds near singular positions
+  bool extended_ = false;  // the last attempt's pose came from the long-double phase
+  double bounds_regular_ = std::numeric_limits<double>::infinity();  // smallest sharper κ along the run
 };
 
 // One attempt from the accepted state to time t (predictor over dt).
@@ -219,6 +234,7 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
   solve_.extended_precision =
       accuracy_phase && NeedsExtendedResidual(options_.tolerance, last_condition_, regular_condition_, options_.order);
   last_ = SolvePosition(*ws_, solve_, &s_, reuse && options_.modified_newton);
+  extended_ = solve_.extended_precision;
   if (!last_.success || !SetAsideCloses()) return Outcome::Failed;
   const double sign = ws_->factorization().Sign();
   if (options_.branch_guard) {
@@ -290,7 +306,13 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   diag->condition = ws_->factorization().ConditionEstimate();
   last_condition_ = diag->condition;
   regular_condition_ = std::min(regular_condition_, diag->condition);
+  // Which rows take measured bounds is decided on the sharper κ (two more
+  // iterations): the one-step estimate lags where a pivot collapses (constraints.md §8).
+  const double kappa = std::max(diag->condition, ws_->factorization().SharperConditionEstimate(kSharperSteps));
+  bounds_regular_ = std::min(bounds_regular_, kappa);
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
+  errors_->Observe(s_);
+  if (MeasuresBounds(kappa)) errors_->Raise(*ws_, s_, kappa, diag->residual, extended_, diag->error_bound);
 }
 
 // Redundancy that follows the motion (issue "Right at every order", item 1): the

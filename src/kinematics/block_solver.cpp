@@ -199,6 +199,7 @@ double BlockSolver::ConditionEstimate() {
     const double norm = (b.row_scale.asDiagonal() * b.J * b.col_scale.asDiagonal()).norm();
     worst = std::max(worst, norm * inv);
   }
+  last_condition_ = worst;
   return worst;
 }
 

@@ -29,6 +29,7 @@ class BlockSolver : public Factorization {
   /// (largest over the blocks).
   double Sign() override;
   double ConditionEstimate() override;
+  double SharperConditionEstimate(int) override { return last_condition_; }
   /// The block path serves partial selections only: whole-system solves are
   /// done by the full factorization (NewtonSolver).
   bool SolveLinear(const Eigen::VectorXd&, Eigen::VectorXd*) override { return false; }
@@ -37,6 +38,7 @@ class BlockSolver : public Factorization {
   int solved_blocks() const { return solved_; }
 
  private:
+  double last_condition_ = 0;  // the last ConditionEstimate
   struct Block {
     std::vector<int> rows;                          // global constraint rows
     std::vector<int> cols;                          // global columns (6 per body)

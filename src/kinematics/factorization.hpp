@@ -23,6 +23,12 @@ class Factorization {
   virtual double Sign() = 0;
   /// Estimate of cond(Φ_q) from the current factorization.
   virtual double ConditionEstimate() = 0;
+  /// A sharper estimate after ConditionEstimate at the same pose: `steps` more
+  /// iterations on (J_sᵀJ_s)⁻¹ (a solve and a transposed solve each) from its vector,
+  /// which converge to 1/σ_min where the one-step estimate lags a collapsing pivot
+  /// (error bounds near singular positions, constraints.md §8). The one-step
+  /// estimate where no transposed solve is available.
+  virtual double SharperConditionEstimate(int steps) = 0;
 };
 
 }  // namespace mechkin

@@ -81,7 +81,30 @@ double NewtonSolver::ConditionEstimate() {
   const double inv_norm = cond_y_.norm();
   if (!(inv_norm > 0) || !std::isfinite(inv_norm)) return std::numeric_limits<double>::infinity();
   cond_x_ = cond_y_ / inv_norm;
-  return DimensionlessNorm(jac_.matrix(), scales_, col_scales_) * inv_norm;
+  cond_norm_ = DimensionlessNorm(jac_.matrix(), scales_, col_scales_);
+  cond_last_ = cond_norm_ * inv_norm;
+  return cond_last_;
+}
+
+// J_s⁻¹ = D⁻¹Φ_q⁻¹W⁻¹ and J_s⁻ᵀ = W⁻¹Φ_q⁻ᵀD⁻¹ alternately, on copies: the run's
+// warm-started vector cond_x_ is left as it was.
+double NewtonSolver::SharperConditionEstimate(int steps) {
+  if (!factorized_) return std::numeric_limits<double>::infinity();
+  double inv_norm = cond_norm_ > 0 ? cond_last_ / cond_norm_ : 0;
+  sharp_x_ = cond_x_;
+  for (int i = 0; i < steps; ++i) {
+    sharp_b_ = sharp_x_.cwiseQuotient(col_scales_);
+    if (!SolveLinearTranspose(sharp_b_, &sharp_y_)) break;
+    sharp_y_.array() /= scales_.array();
+    sharp_b_ = (sharp_y_ / sharp_y_.norm()).cwiseQuotient(scales_);
+    BackSolve(sharp_b_, &sharp_y_);
+    sharp_y_.array() /= col_scales_.array();
+    const double n = sharp_y_.norm();
+    if (!(n > 0) || !std::isfinite(n)) break;
+    inv_norm = std::max(inv_norm, n);
+    sharp_x_ = sharp_y_ / n;
+  }
+  return cond_norm_ * inv_norm;
 }
 
 SolveSummary NewtonSolver::Solve(const SolveOptions& options, SystemState* s, bool reuse) {

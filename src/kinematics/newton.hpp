@@ -49,6 +49,7 @@ class NewtonSolver : public Factorization {
   /// norm times an inverse-iteration estimate of the inverse's norm), from the
   /// current factorization: independent of the mechanism's size and units.
   double ConditionEstimate() override;
+  double SharperConditionEstimate(int steps) override;
 
  private:
   void RefineToTarget(const SolveOptions& options, SystemState* s, SolveSummary* sum);
@@ -65,7 +66,8 @@ class NewtonSolver : public Factorization {
   std::vector<int> dense_offset_;  // per nonzero of jac_ (storage order): its place in dense_J_
   SmallLU dense_lu_;
   bool factorized_ = false;
-  Eigen::VectorXd phi_, rhs_, dq_, cond_x_, cond_y_, cond_b_;
+  Eigen::VectorXd phi_, rhs_, dq_, cond_x_, cond_y_, cond_b_, sharp_x_, sharp_y_, sharp_b_;
+  double cond_norm_ = 0, cond_last_ = 0;  // ‖J_s‖_F and the estimate of the last ConditionEstimate
   Eigen::VectorXd col_scales_;  // L for translation columns, 1 for rotation (dimensionless κ)
   // Extended-precision accuracy phase: poses, driver values and Φ, sized once.
   std::vector<ExtendedPose> ext_poses_;

@@ -1,0 +1,176 @@
+#include "analysis/row_error_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mechkin {
+
+namespace {
+
+constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;
+// Safety on the measured (first-order) terms: the errors are samples of round-off
+// (their size, not their worst case) and the chain is linearized about a pose that is
+// itself only known to e_0.
+constexpr double kPositionSafety = 2;
+constexpr double kExtendedRoundoff = std::numeric_limits<Real>::epsilon();
+constexpr double kDerivativeSafety = 4;
+
+// max-abs of a ω'-layout vector with translations divided by the characteristic length.
+double ScaledNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& col_scales) {
+  double m = 0;
+  for (int i = 0; i < x.size(); ++i) m = std::max(m, std::abs(x[i] / col_scales[i]));
+  return m;
+}
+
+}  // namespace
+
+RowErrorEstimator::RowErrorEstimator(const ConstraintSystem& sys, int order)
+    : sys_(sys), order_(order), ext_poses_(sys.num_bodies()), ext_drivers_(sys.model().drivers.size()), col_scales_(DimensionlessColumnScales(sys)), seed_(order + 1), delta_(order + 1),
+      scale_(order + 1, 0.0) {
+  ext_phi_.resize(sys.num_rows());
+  plus_state_ = std::make_unique<SystemState>(sys);
+  minus_state_ = std::make_unique<SystemState>(sys);
+  const int n = 6 * sys.num_bodies();
+  for (auto& d : delta_) d.setZero(n);
+  x_.resize(n);
+}
+
+RowErrorEstimator::~RowErrorEstimator() = default;
+
+void RowErrorEstimator::Observe(const SystemState& s) {
+  for (int k = 1; k <= order_; ++k) {
+    double m = 0;
+    for (const BodyKinematics& b : s.bodies)
+      m = std::max({m, b.r[k].cwiseAbs().maxCoeff() / col_scales_[0], b.w[k - 1].cwiseAbs().maxCoeff()});
+    scale_[k] = std::max(scale_[k], m);
+  }
+}
+
+// The Newton correction y = Φ_q⁻¹(−Φ) (unscaled, ω' layout) and κ ≥ ‖J_s‖_F ‖J_s⁻¹x‖
+// for x the scaled residual's direction and for ŷ (one inverse-iteration step, its
+// result in probe_, unscaled). *y_norm: ‖y‖ scaled, max-abs.
+bool RowErrorEstimator::PositionError(KinematicsWorkspace& ws, const SystemState& s, double* kappa, double* y_norm) {
+  if (rows_ != ws.active()) {
+    rows_ = ws.active();
+    jac_ = std::make_unique<SparseJacobian>(sys_, Formulation::Omega, rows_);
+    row_scales_ = RowScales(sys_, rows_);
+    rhs_.resize(rows_.size());
+  }
+  jac_->Fill(sys_, s);
+  const double norm = DimensionlessNorm(jac_->matrix(), row_scales_, col_scales_);
+  CalcPhi(sys_, s, &full_);
+  for (size_t r = 0; r < rows_.size(); ++r) rhs_[r] = -full_[rows_[r]];
+  if (!ws.factorization().SolveLinear(rhs_, &delta_[0]) || !delta_[0].allFinite()) return false;
+  *y_norm = ScaledNorm(delta_[0], col_scales_);
+  const double residual_norm = rhs_.cwiseProduct(row_scales_).norm();
+  const double y2 = delta_[0].cwiseQuotient(col_scales_).norm();
+  double inverse = residual_norm > 0 ? y2 / residual_norm : 0;
+  // The start of the inverse iteration: ŷ, or any vector when the pose closes exactly.
+  if (y2 > 0) rhs_ = delta_[0].cwiseQuotient(col_scales_) / y2;
+  else rhs_.setConstant(1 / std::sqrt(static_cast<double>(rhs_.size())));
+  rhs_ = rhs_.cwiseQuotient(row_scales_);
+  if (!ws.factorization().SolveLinear(rhs_, &probe_) || !probe_.allFinite()) return false;
+  inverse = std::max(inverse, probe_.cwiseQuotient(col_scales_).norm());
+  *kappa = std::max(*kappa, norm * inverse);
+  // The pose's actual error: Φ_q⁻¹Φ with Φ in long double at the stored pose (§9),
+  // the residual Newton in double cannot see below its own round-off.
+  for (size_t b = 0; b < s.bodies.size(); ++b) {
+    ext_poses_[b] = ExtendedPose::Of(s.bodies[b]);
+    ext_poses_[b].A = RotationMatrix(ext_poses_[b].p);
+  }
+  EvalDriverValuesExtended(sys_.model(), s.t, &ext_drivers_);
+  CalcPhiExtended(sys_, ext_poses_, ext_drivers_, s.angle_ref, &ext_phi_);
+  for (size_t r = 0; r < rows_.size(); ++r) rhs_[r] = static_cast<double>(ext_phi_[rows_[r]]);
+  if (!ws.factorization().SolveLinear(rhs_, &pose_error_) || !pose_error_.allFinite()) return false;
+  return true;
+}
+
+// out = s moved by sign·h·delta_ in the pose and the derivative orders 1..upto, in
+// the ω' chart (as SensitivitySolver::PerturbedState does for a parameter).
+void RowErrorEstimator::Moved(const SystemState& s, int upto, double sign, SystemState* out) const {
+  out->t = s.t;
+  out->bodies = s.bodies;
+  out->driver_values = s.driver_values;
+  out->angle_ref = s.angle_ref;
+  const double e = sign * h_;
+  for (size_t b = 0; b < out->bodies.size(); ++b) {
+    BodyKinematics& bk = out->bodies[b];
+    bk.r[0] += e * delta_[0].segment<3>(6 * b);
+    bk.p = QuatRetractBody(bk.p, e * delta_[0].segment<3>(6 * b + 3));
+    bk.A = CalcA(bk.p);
+    bk.AD[0] = bk.AB[0] = bk.A;
+    for (int k = 1; k <= upto; ++k) {
+      bk.r[k] += e * delta_[k].segment<3>(6 * b);
+      bk.w[k - 1] += e * delta_[k].segment<3>(6 * b + 3);
+    }
+    bk.UpdateDerived(order_);
+  }
+}
+
+// delta_[k] = D F_k · delta_[0]: Φ_q δq^(k) = −[R_k(s₊) − R_k(s₋)] / 2h with
+// R_k = Φ_q q^(k) − RHS_k and the lower orders moved along their own δ.
+void RowErrorEstimator::Propagate(KinematicsWorkspace& ws, const SystemState& s, int k) {
+  // h: the largest move 1e-6 of its order's scale (linear, above the residuals' round-off).
+  double extent = ScaledNorm(delta_[0], col_scales_);
+  for (int j = 1; j < k; ++j) extent = std::max(extent, ScaledNorm(delta_[j], col_scales_) / std::max(scale_[j], 1e-300));
+  h_ = extent > 0 ? 1e-6 / extent : 1e-6;
+  for (size_t b = 0; b < s.bodies.size(); ++b) {
+    x_.segment<3>(6 * b) = s.bodies[b].r[k];
+    x_.segment<3>(6 * b + 3) = s.bodies[b].w[k - 1];
+  }
+  for (int side = 0; side < 2; ++side) {
+    SystemState& moved = side == 0 ? *plus_state_ : *minus_state_;
+    Moved(s, k - 1, side == 0 ? 1.0 : -1.0, &moved);
+    jac_->Fill(sys_, moved);
+    CalcRhs(sys_, moved, k, Formulation::Omega, &full_);
+    Eigen::VectorXd& residual = side == 0 ? plus_ : minus_;
+    residual = jac_->matrix() * x_;
+    for (size_t r = 0; r < rows_.size(); ++r) residual[r] -= full_[rows_[r]];
+  }
+  rhs_ = (minus_ - plus_) / (2 * h_);
+  if (!ws.factorization().SolveLinear(rhs_, &delta_[k]) || !delta_[k].allFinite()) delta_[k].setZero();
+}
+
+// seed_[k] = Φ_q⁻¹ R_k(s): the order-k solve's own error (its residual, evaluated with
+// the round-off that made it), k = 1..order, before the chain moves jac_ off s.
+bool RowErrorEstimator::SolveErrors(KinematicsWorkspace& ws, const SystemState& s) {
+  for (int k = 1; k <= order_; ++k) {
+    for (size_t b = 0; b < s.bodies.size(); ++b) {
+      x_.segment<3>(6 * b) = s.bodies[b].r[k];
+      x_.segment<3>(6 * b + 3) = s.bodies[b].w[k - 1];
+    }
+    CalcRhs(sys_, s, k, Formulation::Omega, &full_);
+    plus_ = jac_->matrix() * x_;
+    for (size_t r = 0; r < rows_.size(); ++r) plus_[r] -= full_[rows_[r]];
+    if (!ws.factorization().SolveLinear(plus_, &seed_[k]) || !seed_[k].allFinite()) return false;
+  }
+  return true;
+}
+
+bool RowErrorEstimator::Raise(KinematicsWorkspace& ws, const SystemState& s, double condition, double residual,
+                              bool extended, double* bound) {
+  double kappa = condition, y = 0;
+  if (!PositionError(ws, s, &kappa, &y) || !SolveErrors(ws, s)) return false;
+  if (extended) y = 0;  // the double residual of a rounded long-double pose is round-off
+  // The pose's error ε = Φ_q⁻¹Φ(q̂) from Φ in long double (PositionError) or in double
+  // (−y): along the directions Φ_q nearly annihilates each residual can miss what the
+  // other sees, so the larger; doubled in e_0.
+  const double eps = ScaledNorm(pose_error_, col_scales_);
+  if (eps >= y) delta_[0] = pose_error_;
+  else delta_[0] = -delta_[0];
+  const double measured = std::max(eps, y);
+  const double e0 = std::max({kPositionSafety * measured, kappa * kExtendedRoundoff,
+                              extended ? 0.0 : kappa * 4 * kUnitRoundoff});
+  bound[0] = std::max(bound[0], e0);
+  if (measured > 0) delta_[0] *= e0 / measured;
+  for (int k = 1; k <= order_; ++k) {
+    Propagate(ws, s, k);
+    delta_[k] += seed_[k];
+    const double scale = scale_[k] > 0 ? scale_[k] : 1;
+    bound[k] = kDerivativeSafety * ScaledNorm(delta_[k], col_scales_) / scale + kappa * (e0 + 8 * kUnitRoundoff);
+  }
+  return true;
+}
+
+}  // namespace mechkin
