@@ -14,6 +14,7 @@ const char* ReduceKindName(ReduceKind k) {
     case ReduceKind::Rms: return "rms";
     case ReduceKind::Mean: return "mean";
     case ReduceKind::At: return "at";
+    case ReduceKind::Sse: return "sse";
   }
   return "?";
 }
@@ -132,6 +133,14 @@ struct ReductionAccumulator::State {
 
   Sample cur;  // the row being read, reused: no allocation per row once sized
 
+  // Sse: this state is column `part` of `parts`; per target time its value and
+  // sensitivities (file units: × factor) once the rows around it are read.
+  int part = 0, parts = 1;
+  double factor = 1;
+  std::vector<char> found;
+  std::vector<double> target_value;
+  std::vector<std::vector<double>> target_gradient;
+
   // Fills `cur` from a table row (column t_col is t).
   void Read(const double* row, int t_col) {
     cur.t = row[t_col];
@@ -141,6 +150,7 @@ struct ReductionAccumulator::State {
   void MinMax(const Sample& cur);
   void Trapezoid(const Sample& cur);
   void At(const Sample& cur);
+  void Targets(const Sample& cur);
   ReductionResult Result() const;
   void Extreme(ReductionResult* out) const;
 };
@@ -168,11 +178,35 @@ int ValueColumnOf(const Model& model, const MotionLayout& layout, const OutputCo
   return OutputColumnOf(layout, column, model.outputs[column.output].kind == OutputKind::Point, 0);
 }
 
+namespace {
+
+// An "sse" reduction as one reduction per column (each reads its column at the
+// target times; Finish adds them up), the others as they are.
+std::vector<std::pair<Reduction, int>> Parts(std::vector<Reduction> which) {
+  std::vector<std::pair<Reduction, int>> out;
+  for (Reduction& r : which) {
+    if (r.kind != ReduceKind::Sse) {
+      out.emplace_back(std::move(r), 0);
+      continue;
+    }
+    for (size_t k = 0; k < r.columns.size(); ++k) {
+      Reduction part = r;
+      part.column = r.columns[k];
+      out.emplace_back(std::move(part), static_cast<int>(k));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 ReductionAccumulator::ReductionAccumulator(const Model& model, const MotionLayout& layout, std::vector<Reduction> which) {
   const std::vector<std::string>& params = layout.options().sensitivity;
-  for (Reduction& r : which) {
+  for (auto& [r, part] : Parts(std::move(which))) {
     State s;
     s.r = std::move(r);
+    s.part = part;
+    s.parts = s.r.kind == ReduceKind::Sse ? static_cast<int>(s.r.columns.size()) : 1;
     s.params = static_cast<int>(params.size());
     s.wrt = params;
     s.cols.assign(static_cast<size_t>(kOrders) * (1 + s.params), -1);
@@ -187,9 +221,12 @@ ReductionAccumulator::ReductionAccumulator(const Model& model, const MotionLayou
       s.problem = "output '" + model.outputs[s.r.column.output].name +
                   "' is not in the table (select it with --outputs, or leave --outputs out)";
     else
-      s.unit = layout.columns()[s.cols[0]].unit;
+      s.unit = layout.columns()[s.cols[0]].unit, s.factor = FileUnitFactor(model, layout, s.cols[0]);
     s.g.assign(s.params, 0);
     s.g2.assign(s.params, 0);
+    s.found.assign(s.r.target_t.size(), 0);
+    s.target_value.assign(s.r.target_t.size(), kNaN);
+    s.target_gradient.assign(s.r.target_t.size(), std::vector<double>(s.params, kNaN));
     states_.push_back(std::move(s));
   }
 }
@@ -203,6 +240,7 @@ void ReductionAccumulator::Row(const double* row) {
     const Sample& cur = s.cur;
     if (s.r.kind == ReduceKind::Min || s.r.kind == ReduceKind::Max) s.MinMax(cur);
     else if (s.r.kind == ReduceKind::At) s.At(cur);
+    else if (s.r.kind == ReduceKind::Sse) s.Targets(cur);
     else s.Trapezoid(cur);
     if (s.rows == 0) s.t0 = cur.t;
     s.last = cur;
@@ -252,6 +290,20 @@ void ReductionAccumulator::State::At(const Sample& cur) {
     at_b = cur;
     at_place = Place{&at_a, &at_b, CommonOrder(last, cur, m), (r.t - last.t) / (cur.t - last.t)};
     at_done = true;
+  }
+}
+
+// Sse: each target time between the last row and this one (or on this row): the
+// column's value and sensitivities there, interpolated as "at" does, in file units.
+void ReductionAccumulator::State::Targets(const Sample& cur) {
+  for (size_t i = 0; i < found.size(); ++i) {
+    const double t = r.target_t[i];
+    if (found[i] || !(cur.t == t || (rows > 0 && last.t < t && t < cur.t))) continue;
+    const Place p = cur.t == t ? Place{&cur, &cur, 0, 0}
+                               : Place{&last, &cur, CommonOrder(last, cur, m), (t - last.t) / (cur.t - last.t)};
+    target_value[i] = factor * Interpolate(p, 0);
+    for (int k = 0; k < params; ++k) target_gradient[i][k] = factor * Interpolate(p, 1 + k);
+    found[i] = 1;
   }
 }
 
@@ -310,13 +362,61 @@ ReductionResult ReductionAccumulator::State::Result() const {
       out.value = Interpolate(at_place, 0);
       for (int k = 0; k < params; ++k) out.gradient[k] = Interpolate(at_place, 1 + k);
       break;
+    case ReduceKind::Sse:
+      break;  // AddTargets
   }
   return out;
 }
 
+namespace {
+
+// One column's part of an "sse" into its result: the residuals at the target times
+// (column − target, file units), the sum of their squares and its gradient (chain
+// rule: 2 Σ r ∂r/∂p, ∂r/∂p the column's sensitivity there; docs/constraints.md §15).
+void AddTargets(const ReductionResult& part_result, const Reduction& r, int part, int parts,
+                const std::vector<double>& value, const std::vector<std::vector<double>>& grad, ReductionResult* out) {
+  const size_t n = r.target_t.size(), p = out->wrt.size();
+  if (part == 0) {
+    out->of.clear();
+    for (const std::string& c : r.column_names) out->of += (out->of.empty() ? "" : ",") + c;
+    out->unit = "";
+    out->value = 0;
+    out->gradient.assign(p, 0);
+    out->residuals.assign(n * parts, kNaN);
+    out->residual_gradient.assign(n * parts, std::vector<double>(p, kNaN));
+  }
+  if (!part_result.problem.empty() && out->problem.empty()) out->problem = part_result.problem;
+  for (size_t i = 0; i < n && out->problem.empty(); ++i) {
+    if (!std::isfinite(value[i])) {
+      out->problem = "t = " + std::to_string(r.target_t[i]) + " s (target " + std::to_string(i) + " of " +
+                     r.column_names[part] + ") is not within the rows of the run";
+      break;
+    }
+    const double res = value[i] - r.target_values[i][part];
+    out->residuals[i * parts + part] = res;
+    out->residual_gradient[i * parts + part] = grad[i];
+    out->value += res * res;
+    for (size_t k = 0; k < p; ++k) out->gradient[k] += 2 * res * grad[i][k];
+  }
+  if (!out->problem.empty()) {
+    out->value = kNaN;
+    out->gradient.assign(p, kNaN);
+  }
+}
+
+}  // namespace
+
 std::vector<ReductionResult> ReductionAccumulator::Finish() const {
   std::vector<ReductionResult> out;
-  for (const State& s : states_) out.push_back(s.Result());
+  for (const State& s : states_) {
+    if (s.r.kind != ReduceKind::Sse) {
+      out.push_back(s.Result());
+      continue;
+    }
+    ReductionResult part = s.Result();
+    if (s.part == 0) out.push_back(part);
+    AddTargets(part, s.r, s.part, s.parts, s.target_value, s.target_gradient, &out.back());
+  }
   return out;
 }
 
