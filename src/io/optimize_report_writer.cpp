@@ -116,9 +116,14 @@ void PrintOptimizeReport(const OptimizeResult& r, std::ostream& out) {
   }
   for (size_t s = 0; s < r.per_start.size(); ++s) {
     const OptimizeStart& st = r.per_start[s];
-    out << "  start " << s + 1 << ": " << st.objective_initial << " -> " << st.objective_final << ", "
-        << st.iterations << " iterations" << (st.feasible ? "" : ", infeasible") << ": " << st.termination;
-    if (st.failed_evaluations)
+    out << "  start " << s + 1 << ": ";
+    if (!st.ok) {
+      out << st.termination << "\n";
+      continue;
+    }
+    out << st.objective_initial << " -> " << st.objective_final << ", "
+        << st.iterations << " iterations" << (st.feasible || !st.ok ? "" : ", infeasible") << ": " << st.termination;
+    if (st.failed_evaluations && st.ok)
       out << "; " << st.failed_evaluations << " failed variant(s), first: " << st.failures.front();
     out << "\n";
   }
