@@ -161,6 +161,9 @@ TEST(Optimize, VariantsThatDoNotAssembleAreReportedAndTheSearchGoesOn) {
       EXPECT_NE(s.termination.find("the start fails"), std::string::npos) << s.termination;
     }
   EXPECT_GT(failed, 0);
+  int failed_during = 0;  // a start that met a failing variant in its search and went on
+  for (const OptimizeStart& s : r.per_start) failed_during += s.ok && s.failed_evaluations > 0;
+  EXPECT_GT(failed_during, 0);
   EXPECT_EQ(r.per_start.size(), 8u);
   EXPECT_TRUE(r.converged);
   const Eigen::Vector3d exact = ClosedForm(m.reductions[0]);
@@ -183,6 +186,38 @@ TEST(Optimize, ConstraintEndsActiveAtItsBound) {
   EXPECT_NEAR(r.after[2] / bound, 1, 1e-6);
   EXPECT_TRUE(r.constraint_active[0]);
   EXPECT_GT(r.objective_after, 1e-6);  // the three points can no longer be met
+}
+
+// A bad "sse" is refused at its pointer with a fix.
+TEST(Optimize, BadTargetsAreErrorsAtTheirPointers) {
+  auto first_error = [](json doc, const json& fit) {
+    doc["outputs"][2] = fit;
+    const LoadResult r = LoadMechanismText(doc.dump(), "inline");
+    return r.errors.empty() ? std::string("accepted") : r.errors.front().ToString();
+  };
+  const json base = Freudenstein();
+  json fit = base["outputs"][2];
+  fit.erase("targets");
+  EXPECT_NE(first_error(base, fit).find("/outputs/2: a reduction \"sse\" needs 'targets'"), std::string::npos);
+  fit = base["outputs"][2];
+  fit["targets"]["values"] = {100, 110};
+  EXPECT_NE(first_error(base, fit).find("/outputs/2/targets/values: 'values' has 2 entries for 3 times"),
+            std::string::npos);
+  fit = base["outputs"][2];
+  fit["targets"]["t"][1] = 2;
+  EXPECT_NE(first_error(base, fit).find("/outputs/2/targets/t/1: t = 2 s is outside the run"), std::string::npos);
+  fit = base["outputs"][2];
+  fit["targets"]["values"][1] = {110, 1};
+  EXPECT_NE(first_error(base, fit).find("/outputs/2/targets/values/1: a target row has 2 values for 1 columns"),
+            std::string::npos);
+  fit = base["outputs"][2];
+  fit["reduce"] = "min";
+  EXPECT_NE(first_error(base, fit).find("/outputs/2/targets: 'targets' goes with \"reduce\": \"sse\" only"),
+            std::string::npos);
+  fit = base["outputs"][2];
+  fit["targets"]["values"][0] = "100";
+  EXPECT_NE(first_error(base, fit).find("/outputs/2/targets/values/0: a target must be a plain number"),
+            std::string::npos);
 }
 
 TEST(Optimize, InvalidRequestsSayWhy) {
