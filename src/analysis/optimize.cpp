@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "analysis/load.hpp"
 #include "analysis/reduction.hpp"
@@ -132,7 +134,14 @@ ObjectiveValue EvaluateObjective(const Model& model, const OptimizeRequest& requ
   RunRequest run = request.run;
   run.sensitivity = request.vary;
   run.interrupted = request.interrupted;
-  const Motion motion = RunMotion(*v.model, run);
+  std::optional<Motion> run_motion;
+  try {
+    run_motion.emplace(RunMotion(*v.model, run));
+  } catch (const std::invalid_argument& e) {  // a parameter the sensitivities refuse (it changes the span)
+    out.problem = e.what();
+    return out;
+  }
+  const Motion& motion = *run_motion;
   if (!motion.complete) {
     out.problem = "the run stopped: " + motion.stop.Summary();
     return out;
@@ -180,6 +189,8 @@ class DesignCost : public ceres::CostFunction {
     if (kind == ReduceKind::Sse) {
       const Reduction& r = *FindReduction(model, request.minimize);
       objective_residuals_ = static_cast<int>(r.target_t.size() * r.columns.size());
+    } else if (kind == ReduceKind::Rms) {
+      objective_residuals_ = model.analysis->steps + 1;  // one per row (a run that stops short fails)
     }
     set_num_residuals(objective_residuals_ + static_cast<int>(request.subject_to.size()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(request.vary.size()));
@@ -222,19 +233,15 @@ class DesignCost : public ceres::CostFunction {
   mutable bool has_[2] = {false, false};
 };
 
-// The objective's residual rows: sse its residuals, rms itself, others √(2(R − L)).
+// The objective's residual rows: sse its residuals, rms its rows' √(w/T) v, others √(2(R − L)).
 bool DesignCost::ObjectiveRows(const ObjectiveValue& v, double* residuals, double* jac) const {
   const size_t n = request_.vary.size();
-  if (kind_ == ReduceKind::Sse) {
+  if (kind_ == ReduceKind::Sse || kind_ == ReduceKind::Rms) {
+    if (static_cast<int>(v.residuals.size()) != objective_residuals_) return false;
     for (int i = 0; i < objective_residuals_; ++i) {
       residuals[i] = v.residuals[i];
       for (size_t k = 0; jac && k < n; ++k) jac[i * n + k] = v.residual_gradient[i][k];
     }
-    return true;
-  }
-  if (kind_ == ReduceKind::Rms) {
-    residuals[0] = v.value;
-    for (size_t k = 0; jac && k < n; ++k) jac[k] = v.gradient[k];
     return true;
   }
   if (!(v.value > floor_)) return false;

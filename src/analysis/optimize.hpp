@@ -7,7 +7,8 @@
 // min/max as its bounds) is a sum of squares, ½ Σ rᵢ²:
 //   - an "sse" objective: its residuals (column − target at each target time), so
 //     the cost is ½ sse and Gauss–Newton converges quadratically on a zero-residual fit;
-//   - an "rms" objective: the single residual rms (rms ≥ 0: the same minimiser);
+//   - an "rms" objective: one residual per row, √(wᵢ/T) vᵢ with wᵢ the row's trapezoid
+//     weight, whose squares sum to rms² exactly (the same minimiser; Gauss–Newton);
 //   - any other (min, max, mean, at): the single residual √(2 (R − L)), so the cost is
 //     R − L exactly; L = R₀ − 1000 (|R₀| + 1) is fixed per start (a step below L is a
 //     failed evaluation: Ceres shrinks it);

@@ -140,6 +140,9 @@ struct ReductionAccumulator::State {
   std::vector<char> found;
   std::vector<double> target_value;
   std::vector<std::vector<double>> target_gradient;
+  // Rms with sensitivities: per row v, its trapezoid weight Σ Δt/2 and s_p (the
+  // least-squares residuals √(w/T) v of rms², docs/constraints.md §15).
+  std::vector<double> row_value, row_weight, row_sens;
 
   // Fills `cur` from a table row (column t_col is t).
   void Read(const double* row, int t_col) {
@@ -152,6 +155,7 @@ struct ReductionAccumulator::State {
   void At(const Sample& cur);
   void Targets(const Sample& cur);
   ReductionResult Result() const;
+  void RmsResiduals(double span, ReductionResult* out) const;
   void Extreme(ReductionResult* out) const;
 };
 
@@ -266,8 +270,14 @@ void ReductionAccumulator::State::MinMax(const Sample& cur) {
 // ∫ v dt and ∫ v² dt by the trapezoid rule over the rows, and their sensitivities
 // (the exact derivatives of the sums: Σ (s_i + s_i+1)/2 Δt, Σ (v_i s_i + v_i+1 s_i+1) Δt/2 · 2).
 void ReductionAccumulator::State::Trapezoid(const Sample& cur) {
+  if (r.kind == ReduceKind::Rms && params > 0) {
+    row_value.push_back(cur.d[0]);
+    row_weight.push_back(0);
+    for (int p = 0; p < params; ++p) row_sens.push_back(cur.block(1 + p)[0]);
+  }
   if (rows == 0) return;
   const double dt = cur.t - last.t;
+  if (!row_weight.empty()) row_weight[row_weight.size() - 2] += dt / 2, row_weight.back() += dt / 2;
   const double a = last.d[0], b = cur.d[0];
   sum += 0.5 * (a + b) * dt;
   sum2 += 0.5 * (a * a + b * b) * dt;
@@ -327,6 +337,18 @@ void ReductionAccumulator::State::Extreme(ReductionResult* out) const {
   for (int k = 0; k < params; ++k) out->gradient[k] = Interpolate(p, 1 + k);
 }
 
+// rms² = Σ (w_i/T) v_i² (the trapezoid sum): residuals √(w_i/T) v_i, gradients √(w_i/T) s_i.
+void ReductionAccumulator::State::RmsResiduals(double span, ReductionResult* out) const {
+  if (!(span > 0)) return;
+  for (size_t i = 0; i < row_value.size(); ++i) {
+    const double w = std::sqrt(row_weight[i] / span);
+    out->residuals.push_back(w * row_value[i]);
+    std::vector<double> g(params);
+    for (int k = 0; k < params; ++k) g[k] = w * row_sens[i * params + k];
+    out->residual_gradient.push_back(std::move(g));
+  }
+}
+
 ReductionResult ReductionAccumulator::State::Result() const {
   ReductionResult out;
   out.name = r.name;
@@ -355,6 +377,7 @@ ReductionResult ReductionAccumulator::State::Result() const {
       out.value = span > 0 ? std::sqrt(sum2 / span) : std::abs(last.d[0]);
       for (int k = 0; k < params; ++k)
         out.gradient[k] = span > 0 ? g2[k] / (2 * span * out.value) : std::copysign(1.0, last.d[0]) * last.block(1 + k)[0];
+      RmsResiduals(span, &out);
       break;
     case ReduceKind::At:
       out.t = r.t;
