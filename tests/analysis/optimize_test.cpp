@@ -66,21 +66,27 @@ TEST(Optimize, FreudensteinThreePrecisionPointsRecoverTheClosedForm) {
 }
 
 // d(objective)/dp from the sensitivities against (f(p + h) − f(p − h))/2h of whole
-// runs at tolerance 1e-13: an sse (Freudenstein, off the fit) and a min located
-// between rows (the transmission angle of the same linkage).
+// runs at tolerance 1e-13: an sse (Freudenstein, off the fit), a min located between
+// rows and an rms (the transmission angle of the same linkage).
 TEST(Optimize, ObjectiveGradientEqualsCentralDifferences) {
   json doc = Freudenstein();
   doc["outputs"].push_back({{"name", "BD"}, {"type", "distance"}, {"body1", "crank"}, {"point1", {"xb", "yb", 0}},
                             {"body2", "ground"}, {"point2", {"d", 0, 0}}});
   doc["outputs"].push_back({{"name", "mu"}, {"type", "expression"}, {"value", "acos((b^2 + c^2 - BD^2)/(2*b*c))*180/pi"}});
   doc["outputs"].push_back({{"name", "mu_min"}, {"type", "reduction"}, {"of", "mu"}, {"reduce", "min"}});
+  doc["outputs"].push_back({{"name", "mu_rms"}, {"type", "reduction"}, {"of", "mu"}, {"reduce", "rms"}});
   const Model m = testing_files::FromJson(doc);
-  for (const char* objective : {"fit", "mu_min"}) {
+  for (const char* objective : {"fit", "mu_min", "mu_rms"}) {
     OptimizeRequest req = Request({"a", "b", "c"}, objective);
     req.run.tolerance = 1e-13;
     const std::vector<double> x = {0.6, 0.7, 1.1};
     const ObjectiveValue v = EvaluateObjective(m, req, x);
     ASSERT_TRUE(v.ok) << v.problem;
+    // sse and rms hand Ceres residuals whose squares sum to the objective (rms: its square)
+    double squares = 0;
+    for (double r : v.residuals) squares += r * r;
+    if (std::string(objective) == "fit") EXPECT_NEAR(squares, v.value, 1e-12 * v.value);
+    if (std::string(objective) == "mu_rms") EXPECT_NEAR(squares, v.value * v.value, 1e-12 * v.value * v.value);
     for (int k = 0; k < 3; ++k) {
       const double h = 1e-5 * x[k];
       std::vector<double> xp = x, xm = x;
