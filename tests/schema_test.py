@@ -40,9 +40,11 @@ def main():
     failures = 0
     passed = 0
     mech_dir = os.path.join(src, "mechanisms")
-    for f in sorted(os.listdir(mech_dir)):
-        if not f.endswith(".json"):
-            continue
+    # the bundled mechanisms and the worked synthesis examples (mechanisms/synthesis)
+    bundled = [f for f in sorted(os.listdir(mech_dir)) if f.endswith(".json")]
+    bundled += [os.path.join("synthesis", f) for f in sorted(os.listdir(os.path.join(mech_dir, "synthesis")))
+                if f.endswith(".json")]
+    for f in bundled:
         errs = list(validator.iter_errors(json.load(open(os.path.join(mech_dir, f)))))
         if errs:
             failures += 1

@@ -24,7 +24,7 @@ from . import _mechkin
 from .builder import Mechanism
 
 __all__ = ["load", "loads", "Mechanism", "Model", "Motion", "RunRequest", "CheckReport", "MobilityReport", "RangeReport",
-           "ToleranceReport", "FormatError", "Diagnostic", "RunStop", "Contact", "sweep"]
+           "ToleranceReport", "OptimizeResult", "FormatError", "Diagnostic", "RunStop", "Contact", "sweep"]
 
 RunRequest = _mechkin.RunRequest
 CheckReport = _mechkin.CheckReport
@@ -159,6 +159,27 @@ class ToleranceReport(_Report):
                                                               sorted(self._data.get("tolerances", {})))
 
 
+class OptimizeResult(_Report):
+    """`mechkin optimize` (Model.optimize): the report's fields as attributes —
+    converged, objective_before, objective_after, parameters ([{name, before, after,
+    gradient}]), iterations, gradient_norm, best_start, active_bounds, constraints
+    ([{reduction, relation, bound, value, active}]), starts (per start: initial, final,
+    objective_initial, objective_final, iterations, ok, feasible, failed_evaluations,
+    failures, termination) — and .model, the Model with the optimised values (None when
+    no start ran). str(result) is the CLI's text report."""
+
+    def __init__(self, json_text, text, model, values):
+        super().__init__(json_text, text)
+        self.model = model
+        self.values = dict(values)
+
+    def __repr__(self):
+        return "OptimizeResult(%s: %s -> %s, %s, %s)" % (
+            self._data["minimize"], self._data["objective_before"], self._data["objective_after"],
+            "converged" if self._data["converged"] else "not converged",
+            ", ".join("%s=%.10g" % kv for kv in self.values.items()))
+
+
 class Model:
     """A compiled, immutable mechanism (load() or loads() make one).
 
@@ -169,7 +190,9 @@ class Model:
     tolerance, min, max, expression}}).
 
     Methods: run() -> Motion, check() -> CheckReport, range() -> RangeReport,
-    tolerance() -> ToleranceReport, with_parameters(**values) -> Model.
+    tolerance() -> ToleranceReport, with_parameters(**values) -> Model,
+    optimize(vary, minimize) -> OptimizeResult, objective(name, values) and
+    gradient(name, values) for one's own optimiser.
     Models pickle (as their file text and parameter values)."""
 
     def __init__(self, core):
@@ -201,6 +224,41 @@ class Model:
         if core is None:
             raise FormatError(self._core.source, errors)
         return Model(core)
+
+    def optimize(self, vary, minimize, subject_to=(), starts=1, seed=0, max_iterations=100, order=3, tol=1e-12):
+        """Minimise the reduction `minimize` over the parameters `vary`, like `mechkin
+        optimize` (Ceres, exact gradients from the sensitivities; bounds: the parameters'
+        min/max; subject_to: ["R >= v", "R <= v"] by quadratic penalty; starts: the file's
+        values, then starts - 1 drawn with `seed`). Returns an OptimizeResult whose
+        .model is the Model with the optimised values."""
+        vary = [vary] if isinstance(vary, str) else list(vary)
+        subject_to = [subject_to] if isinstance(subject_to, str) else list(subject_to)
+        data, text, values = self._core.optimize(vary, minimize, subject_to, int(starts), int(seed),
+                                                 int(max_iterations), int(order), float(tol))
+        report = _json.loads(data)
+        model = self.with_parameters(**values) if report["best_start"] >= 0 else None
+        return OptimizeResult(data, text, model, values)
+
+    def _objective(self, name, values, vary, order, tol):
+        if isinstance(values, dict):
+            vary, values = list(values), [float(v) for v in values.values()]
+        else:
+            if vary is None:
+                raise ValueError("pass vary=[parameter names] with an array of values (or pass a dict)")
+            vary = [vary] if isinstance(vary, str) else list(vary)
+            values = [float(v) for v in _np.asarray(values, dtype=float).ravel()]
+        return self._core.objective(name, vary, values, int(order), float(tol))
+
+    def objective(self, name, values, vary=None, order=3, tol=1e-12):
+        """The reduction `name` for the parameter values given ({name: value}, or an array
+        in the order of `vary`): one run of the variant. Raises ValueError when the
+        variant does not assemble or its run stops (the message says why)."""
+        return self._objective(name, values, vary, order, tol)[0]
+
+    def gradient(self, name, values, vary=None, order=3, tol=1e-12):
+        """d(reduction)/d(parameter) as a numpy array, in the order of the dict's keys or
+        of `vary`: exact, from one run with sensitivities (for scipy.optimize's jac=)."""
+        return _np.asarray(self._objective(name, values, vary, order, tol)[1], dtype=float)
 
     def check(self):
         """The `mechkin check` report (CheckReport): Grübler count, rank mobility,

@@ -25,6 +25,8 @@
 #include "io/table_writer.hpp"
 #include "io/tolerance_report_writer.hpp"
 #include "analysis/load.hpp"
+#include "analysis/optimize.hpp"
+#include "io/optimize_report_writer.hpp"
 #include "check_report_binding.hpp"
 #include "interrupt_binding.hpp"
 #include "request_binding.hpp"
@@ -179,6 +181,67 @@ py::tuple ToleranceOfModel(const LoadedModel& m, int order, int monte_carlo, uns
   }
   interrupt.RethrowIfRaised();
   return ReportAndText(report, &ToleranceReportJsonText, &PrintToleranceReport);
+}
+
+// Model.optimize / objective / gradient (analysis/optimize.hpp): the request as the
+// CLI's `mechkin optimize` builds it.
+OptimizeRequest PyOptimizeRequest(const std::vector<std::string>& vary, const std::string& minimize,
+                                  const std::vector<std::string>& subject_to, int starts, unsigned long seed,
+                                  int max_iterations, int order, double tol) {
+  ValidateOrderAndTolerance(order, tol);
+  OptimizeRequest r;
+  r.vary = vary;
+  r.minimize = minimize;
+  r.starts = starts;
+  r.seed = seed;
+  r.max_iterations = max_iterations;
+  r.run.order = order;
+  r.run.tolerance = tol;
+  for (const std::string& text : subject_to) {
+    OptimizeConstraint c;
+    std::string why;
+    Require(ParseOptimizeConstraint(text, &c, &why), why);
+    r.subject_to.push_back(c);
+  }
+  return r;
+}
+
+// (report JSON, report text, {parameter: optimised value}).
+py::tuple OptimizeModel(const LoadedModel& m, const std::vector<std::string>& vary, const std::string& minimize,
+                        const std::vector<std::string>& subject_to, int starts, unsigned long seed,
+                        int max_iterations, int order, double tol) {
+  OptimizeRequest r = PyOptimizeRequest(vary, minimize, subject_to, starts, seed, max_iterations, order, tol);
+  const std::string problem = OptimizeRequestProblem(*m.model, r);
+  Require(problem.empty(), problem);
+  OptimizeResult result;
+  const PythonInterrupt interrupt;
+  r.interrupted = interrupt.Poll();
+  {
+    py::gil_scoped_release release;
+    result = Optimize(*m.model, r);
+  }
+  interrupt.RethrowIfRaised();
+  py::dict after;
+  for (size_t k = 0; k < result.vary.size() && k < result.after.size(); ++k) after[py::str(result.vary[k])] = result.after[k];
+  std::ostringstream text;
+  PrintOptimizeReport(result, text);
+  return py::make_tuple(OptimizeReportJsonText(result), text.str(), after);
+}
+
+// (value, gradient) of a reduction at parameter values; ValueError when the variant fails.
+py::tuple ObjectiveOfModel(const LoadedModel& m, const std::string& name, const std::vector<std::string>& vary,
+                           const std::vector<double>& values, int order, double tol) {
+  OptimizeRequest r = PyOptimizeRequest(vary, name, {}, 1, 0, 1, order, tol);
+  Require(values.size() == vary.size(), "give one value per parameter varied");
+  const std::string problem = OptimizeRequestProblem(*m.model, r);
+  Require(problem.empty(), problem);
+  ObjectiveValue v;
+  {
+    py::gil_scoped_release release;
+    v = EvaluateObjective(*m.model, r, values);
+  }
+  Require(v.ok, name + " cannot be evaluated there: " + v.problem);
+  return py::make_tuple(v.value, v.gradient);
 }
 
 // A Motion with the model it was computed from (the layout refers to it).
@@ -338,6 +401,7 @@ py::dict Report(const PyMotion& pm) {
     py::dict g;
     for (size_t k = 0; k < r.wrt.size(); ++k) g[py::str(r.wrt[k])] = r.gradient[k];
     x["gradient"] = g;
+    if (r.kind == ReduceKind::Sse) x["residuals"] = r.residuals;  // column − target per (t, column)
     x["problem"] = r.problem.empty() ? py::object(py::none()) : py::object(py::str(r.problem));
     reductions.append(x);
   }
@@ -477,6 +541,10 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def("info", &ModelInfo)
       .def("check", &CheckModel)
       .def("with_parameters", &ModelWithParameters, py::arg("values"))
+      .def("optimize", &OptimizeModel, py::arg("vary"), py::arg("minimize"), py::arg("subject_to"), py::arg("starts"),
+           py::arg("seed"), py::arg("max_iterations"), py::arg("order"), py::arg("tol"))
+      .def("objective", &ObjectiveOfModel, py::arg("name"), py::arg("vary"), py::arg("values"), py::arg("order"),
+           py::arg("tol"))
       .def("run", &RunModel, py::arg("request"), py::arg("start"), py::arg("end"), py::arg("steps"))
       .def_readonly("overrides", &LoadedModel::overrides)
       .def("run_variant", &RunVariantSummary, py::arg("values"), py::arg("order"), py::arg("tol"))

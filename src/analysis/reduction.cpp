@@ -14,6 +14,7 @@ const char* ReduceKindName(ReduceKind k) {
     case ReduceKind::Rms: return "rms";
     case ReduceKind::Mean: return "mean";
     case ReduceKind::At: return "at";
+    case ReduceKind::Sse: return "sse";
   }
   return "?";
 }
@@ -132,6 +133,17 @@ struct ReductionAccumulator::State {
 
   Sample cur;  // the row being read, reused: no allocation per row once sized
 
+  // Sse: this state is column `part` of `parts`; per target time its value and
+  // sensitivities (file units: × factor) once the rows around it are read.
+  int part = 0, parts = 1;
+  double factor = 1;
+  std::vector<char> found;
+  std::vector<double> target_value;
+  std::vector<std::vector<double>> target_gradient;
+  // Rms with sensitivities: per row v, its trapezoid weight Σ Δt/2 and s_p (the
+  // least-squares residuals √(w/T) v of rms², docs/constraints.md §15).
+  std::vector<double> row_value, row_weight, row_sens;
+
   // Fills `cur` from a table row (column t_col is t).
   void Read(const double* row, int t_col) {
     cur.t = row[t_col];
@@ -141,7 +153,9 @@ struct ReductionAccumulator::State {
   void MinMax(const Sample& cur);
   void Trapezoid(const Sample& cur);
   void At(const Sample& cur);
+  void Targets(const Sample& cur);
   ReductionResult Result() const;
+  void RmsResiduals(double span, ReductionResult* out) const;
   void Extreme(ReductionResult* out) const;
 };
 
@@ -168,11 +182,35 @@ int ValueColumnOf(const Model& model, const MotionLayout& layout, const OutputCo
   return OutputColumnOf(layout, column, model.outputs[column.output].kind == OutputKind::Point, 0);
 }
 
+namespace {
+
+// An "sse" reduction as one reduction per column (each reads its column at the
+// target times; Finish adds them up), the others as they are.
+std::vector<std::pair<Reduction, int>> Parts(std::vector<Reduction> which) {
+  std::vector<std::pair<Reduction, int>> out;
+  for (Reduction& r : which) {
+    if (r.kind != ReduceKind::Sse) {
+      out.emplace_back(std::move(r), 0);
+      continue;
+    }
+    for (size_t k = 0; k < r.columns.size(); ++k) {
+      Reduction part = r;
+      part.column = r.columns[k];
+      out.emplace_back(std::move(part), static_cast<int>(k));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 ReductionAccumulator::ReductionAccumulator(const Model& model, const MotionLayout& layout, std::vector<Reduction> which) {
   const std::vector<std::string>& params = layout.options().sensitivity;
-  for (Reduction& r : which) {
+  for (auto& [r, part] : Parts(std::move(which))) {
     State s;
     s.r = std::move(r);
+    s.part = part;
+    s.parts = s.r.kind == ReduceKind::Sse ? static_cast<int>(s.r.columns.size()) : 1;
     s.params = static_cast<int>(params.size());
     s.wrt = params;
     s.cols.assign(static_cast<size_t>(kOrders) * (1 + s.params), -1);
@@ -187,9 +225,12 @@ ReductionAccumulator::ReductionAccumulator(const Model& model, const MotionLayou
       s.problem = "output '" + model.outputs[s.r.column.output].name +
                   "' is not in the table (select it with --outputs, or leave --outputs out)";
     else
-      s.unit = layout.columns()[s.cols[0]].unit;
+      s.unit = layout.columns()[s.cols[0]].unit, s.factor = FileUnitFactor(model, layout, s.cols[0]);
     s.g.assign(s.params, 0);
     s.g2.assign(s.params, 0);
+    s.found.assign(s.r.target_t.size(), 0);
+    s.target_value.assign(s.r.target_t.size(), kNaN);
+    s.target_gradient.assign(s.r.target_t.size(), std::vector<double>(s.params, kNaN));
     states_.push_back(std::move(s));
   }
 }
@@ -203,6 +244,7 @@ void ReductionAccumulator::Row(const double* row) {
     const Sample& cur = s.cur;
     if (s.r.kind == ReduceKind::Min || s.r.kind == ReduceKind::Max) s.MinMax(cur);
     else if (s.r.kind == ReduceKind::At) s.At(cur);
+    else if (s.r.kind == ReduceKind::Sse) s.Targets(cur);
     else s.Trapezoid(cur);
     if (s.rows == 0) s.t0 = cur.t;
     s.last = cur;
@@ -228,8 +270,14 @@ void ReductionAccumulator::State::MinMax(const Sample& cur) {
 // ∫ v dt and ∫ v² dt by the trapezoid rule over the rows, and their sensitivities
 // (the exact derivatives of the sums: Σ (s_i + s_i+1)/2 Δt, Σ (v_i s_i + v_i+1 s_i+1) Δt/2 · 2).
 void ReductionAccumulator::State::Trapezoid(const Sample& cur) {
+  if (r.kind == ReduceKind::Rms && params > 0) {
+    row_value.push_back(cur.d[0]);
+    row_weight.push_back(0);
+    for (int p = 0; p < params; ++p) row_sens.push_back(cur.block(1 + p)[0]);
+  }
   if (rows == 0) return;
   const double dt = cur.t - last.t;
+  if (!row_weight.empty()) row_weight[row_weight.size() - 2] += dt / 2, row_weight.back() += dt / 2;
   const double a = last.d[0], b = cur.d[0];
   sum += 0.5 * (a + b) * dt;
   sum2 += 0.5 * (a * a + b * b) * dt;
@@ -255,6 +303,20 @@ void ReductionAccumulator::State::At(const Sample& cur) {
   }
 }
 
+// Sse: each target time between the last row and this one (or on this row): the
+// column's value and sensitivities there, interpolated as "at" does, in file units.
+void ReductionAccumulator::State::Targets(const Sample& cur) {
+  for (size_t i = 0; i < found.size(); ++i) {
+    const double t = r.target_t[i];
+    if (found[i] || !(cur.t == t || (rows > 0 && last.t < t && t < cur.t))) continue;
+    const Place p = cur.t == t ? Place{&cur, &cur, 0, 0}
+                               : Place{&last, &cur, CommonOrder(last, cur, m), (t - last.t) / (cur.t - last.t)};
+    target_value[i] = factor * Interpolate(p, 0);
+    for (int k = 0; k < params; ++k) target_gradient[i][k] = factor * Interpolate(p, 1 + k);
+    found[i] = 1;
+  }
+}
+
 // Min/Max: the extremum of the interpolants either side of the best row; the
 // gradient by the envelope theorem, d(min)/dp = ∂v/∂p at the located t (the
 // sensitivities' interpolant there, built from the same rows).
@@ -273,6 +335,18 @@ void ReductionAccumulator::State::Extreme(ReductionResult* out) const {
   out->t = p.a->t + p.s * (p.b->t - p.a->t);
   out->located = p.m > 0;
   for (int k = 0; k < params; ++k) out->gradient[k] = Interpolate(p, 1 + k);
+}
+
+// rms² = Σ (w_i/T) v_i² (the trapezoid sum): residuals √(w_i/T) v_i, gradients √(w_i/T) s_i.
+void ReductionAccumulator::State::RmsResiduals(double span, ReductionResult* out) const {
+  if (!(span > 0)) return;
+  for (size_t i = 0; i < row_value.size(); ++i) {
+    const double w = std::sqrt(row_weight[i] / span);
+    out->residuals.push_back(w * row_value[i]);
+    std::vector<double> g(params);
+    for (int k = 0; k < params; ++k) g[k] = w * row_sens[i * params + k];
+    out->residual_gradient.push_back(std::move(g));
+  }
 }
 
 ReductionResult ReductionAccumulator::State::Result() const {
@@ -303,6 +377,7 @@ ReductionResult ReductionAccumulator::State::Result() const {
       out.value = span > 0 ? std::sqrt(sum2 / span) : std::abs(last.d[0]);
       for (int k = 0; k < params; ++k)
         out.gradient[k] = span > 0 ? g2[k] / (2 * span * out.value) : std::copysign(1.0, last.d[0]) * last.block(1 + k)[0];
+      RmsResiduals(span, &out);
       break;
     case ReduceKind::At:
       out.t = r.t;
@@ -310,13 +385,61 @@ ReductionResult ReductionAccumulator::State::Result() const {
       out.value = Interpolate(at_place, 0);
       for (int k = 0; k < params; ++k) out.gradient[k] = Interpolate(at_place, 1 + k);
       break;
+    case ReduceKind::Sse:
+      break;  // AddTargets
   }
   return out;
 }
 
+namespace {
+
+// One column's part of an "sse" into its result: the residuals at the target times
+// (column − target, file units), the sum of their squares and its gradient (chain
+// rule: 2 Σ r ∂r/∂p, ∂r/∂p the column's sensitivity there; docs/constraints.md §15).
+void AddTargets(const ReductionResult& part_result, const Reduction& r, int part, int parts,
+                const std::vector<double>& value, const std::vector<std::vector<double>>& grad, ReductionResult* out) {
+  const size_t n = r.target_t.size(), p = out->wrt.size();
+  if (part == 0) {
+    out->of.clear();
+    for (const std::string& c : r.column_names) out->of += (out->of.empty() ? "" : ",") + c;
+    out->unit = "";
+    out->value = 0;
+    out->gradient.assign(p, 0);
+    out->residuals.assign(n * parts, kNaN);
+    out->residual_gradient.assign(n * parts, std::vector<double>(p, kNaN));
+  }
+  if (!part_result.problem.empty() && out->problem.empty()) out->problem = part_result.problem;
+  for (size_t i = 0; i < n && out->problem.empty(); ++i) {
+    if (!std::isfinite(value[i])) {
+      out->problem = "t = " + std::to_string(r.target_t[i]) + " s (target " + std::to_string(i) + " of " +
+                     r.column_names[part] + ") is not within the rows of the run";
+      break;
+    }
+    const double res = value[i] - r.target_values[i][part];
+    out->residuals[i * parts + part] = res;
+    out->residual_gradient[i * parts + part] = grad[i];
+    out->value += res * res;
+    for (size_t k = 0; k < p; ++k) out->gradient[k] += 2 * res * grad[i][k];
+  }
+  if (!out->problem.empty()) {
+    out->value = kNaN;
+    out->gradient.assign(p, kNaN);
+  }
+}
+
+}  // namespace
+
 std::vector<ReductionResult> ReductionAccumulator::Finish() const {
   std::vector<ReductionResult> out;
-  for (const State& s : states_) out.push_back(s.Result());
+  for (const State& s : states_) {
+    if (s.r.kind != ReduceKind::Sse) {
+      out.push_back(s.Result());
+      continue;
+    }
+    ReductionResult part = s.Result();
+    if (s.part == 0) out.push_back(part);
+    AddTargets(part, s.r, s.part, s.parts, s.target_value, s.target_gradient, &out.back());
+  }
   return out;
 }
 

@@ -27,9 +27,16 @@ struct ReductionResult {
   // d(value)/d(parameter) per TableOptions::sensitivity (empty without --sensitivity).
   std::vector<std::string> wrt;
   std::vector<double> gradient;
+  // Sse: the differences column − target at each target time (row i, column k at
+  // i·K + k), in the columns' file units, and their gradients (per residual, per wrt):
+  // value = Σ residuals², gradient = 2 Σ r ∂r/∂p (docs/constraints.md §15).
+  // Rms with sensitivities: per row √(w_i/T) v_i (w_i its trapezoid weight), so that
+  // value² = Σ residuals² (table units).
+  std::vector<double> residuals;
+  std::vector<std::vector<double>> residual_gradient;
 };
 
-/// "min", "max", "rms", "mean", "at".
+/// "min", "max", "rms", "mean", "at", "sse".
 const char* ReduceKindName(ReduceKind k);
 
 }  // namespace mechkin

@@ -9,6 +9,7 @@
 #include "cli/commands/check_command.hpp"
 #include "cli/commands/convert_command.hpp"
 #include "cli/commands/foreign.hpp"
+#include "cli/commands/optimize_command.hpp"
 #include "cli/commands/range_command.hpp"
 #include "cli/commands/run_command.hpp"
 #include "cli/commands/sweep_command.hpp"
@@ -36,6 +37,8 @@ int main(int argc, char** argv) {
     mechkin::SetupRangeCommand(app, &range);
     mechkin::ConvertCommandOptions convert;
     mechkin::SetupConvertCommand(app, &convert);
+    mechkin::OptimizeCommandOptions optimize;
+    mechkin::SetupOptimizeCommand(app, &optimize);
     mechkin::ImportCommandOptions import_options;
     mechkin::SetupImportCommand(app, &import_options);
     try {
@@ -53,6 +56,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("sweep")) code = mechkin::RunSweepCommand(sweep, std::cout, std::cerr);
     if (app.got_subcommand("convert")) code = mechkin::RunConvertCommand(convert, std::cout, std::cerr);
     if (app.got_subcommand("import")) code = mechkin::RunImportCommand(import_options, std::cout, std::cerr);
+    if (app.got_subcommand("optimize")) code = mechkin::RunOptimizeCommand(optimize, std::cout, std::cerr);
     if (app.got_subcommand("tolerance")) code = mechkin::RunToleranceCommand(tolerance, std::cout, std::cerr);
     // A report that could not be written is a failure, not a success.
     std::cout.flush();

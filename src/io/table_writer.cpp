@@ -110,7 +110,13 @@ std::string ReductionsJson(const std::vector<ReductionResult>& reductions) {
     out += std::string(k ? "," : "") + "{\"name\":\"" + JsonEscape(r.name) + "\",\"of\":\"" + JsonEscape(r.of) +
            "\",\"reduce\":\"" + ReduceKindName(r.kind) + "\",\"value\":" + JsonNumber(r.value) + ",\"unit\":\"" +
            JsonEscape(r.unit) + "\"";
-    if (r.kind != ReduceKind::Rms && r.kind != ReduceKind::Mean) out += ",\"t\":" + JsonNumber(r.t);
+    if (r.kind == ReduceKind::Min || r.kind == ReduceKind::Max || r.kind == ReduceKind::At)
+      out += ",\"t\":" + JsonNumber(r.t);
+    if (r.kind == ReduceKind::Sse) {
+      out += ",\"residuals\":[";
+      for (size_t i = 0; i < r.residuals.size(); ++i) out += std::string(i ? "," : "") + JsonNumber(r.residuals[i]);
+      out += "]";
+    }
     if (r.kind == ReduceKind::Min || r.kind == ReduceKind::Max) out += std::string(",\"located\":") + (r.located ? "true" : "false");
     if (!r.wrt.empty()) {
       out += ",\"gradient\":{";

@@ -387,11 +387,11 @@ bool Compiler::ResolveColumnName(const std::string& name, const std::string& ptr
 // of them. `t` goes with "at" only and lies in the analysis span.
 void Compiler::CompileReduction(const OutputSpec& o) {
   const std::string& ptr = o.pointer;
-  static const std::vector<std::string> kinds = {"min", "max", "rms", "mean", "at"};
+  static const std::vector<std::string> kinds = {"min", "max", "rms", "mean", "at", "sse"};
   Reduction r;
   r.name = *o.name;
   r.of = o.of.value_or("");
-  bool ok = o.of && ResolveColumnName(*o.of, ptr + "/of", "'of'", &r.column);
+  bool ok = o.of && ResolveColumnName(*o.of, ptr + (o.of_columns.empty() ? "/of" : "/of/0"), "'of'", &r.column);
   const auto kind = o.reduce ? std::find(kinds.begin(), kinds.end(), *o.reduce) : kinds.end();
   if (o.reduce && kind == kinds.end()) {
     const std::string g = DidYouMean(*o.reduce, kinds);
@@ -401,6 +401,18 @@ void Compiler::CompileReduction(const OutputSpec& o) {
   }
   if (!o.reduce || kind == kinds.end()) return;
   r.kind = static_cast<ReduceKind>(kind - kinds.begin());
+  if (r.kind == ReduceKind::Sse) {
+    if (ok && CompileTargets(o, &r)) model_.reductions.push_back(r);
+    return;
+  }
+  if (!o.of_columns.empty()) {
+    Error(ptr + "/of", "an array of columns goes with \"reduce\": \"sse\" only", "name one column");
+    ok = false;
+  }
+  if (o.targets) {
+    Error(ptr + "/targets", "'targets' goes with \"reduce\": \"sse\" only", "remove 'targets' or use \"sse\"");
+    ok = false;
+  }
   if (r.kind == ReduceKind::At && !o.t) {
     Error(ptr, "a reduction \"at\" needs 't'", "add \"t\": the time (s) to read the column at");
     ok = false;
@@ -409,17 +421,64 @@ void Compiler::CompileReduction(const OutputSpec& o) {
     ok = false;
   } else if (o.t) {
     const std::optional<double> t = Value(o.t);
-    const Analysis* a = model_.analysis ? &*model_.analysis : nullptr;
     if (!t) return;
-    if (a && (*t < a->start || *t > a->end)) {
-      Error(ptr + "/t", "t = " + FormatNumber(*t) + " s is outside the run (" + FormatNumber(a->start) + " to " +
-                            FormatNumber(a->end) + " s)",
-            "give a time within /analysis start and end");
-      ok = false;
-    }
+    ok = TimeInRun(*t, ptr + "/t") && ok;
     r.t = *t;
   }
   if (ok) model_.reductions.push_back(r);
+}
+
+bool Compiler::TimeInRun(double t, const std::string& ptr) {
+  const Analysis* a = model_.analysis ? &*model_.analysis : nullptr;
+  if (!a || (t >= a->start && t <= a->end)) return true;
+  Error(ptr, "t = " + FormatNumber(t) + " s is outside the run (" + FormatNumber(a->start) + " to " +
+                 FormatNumber(a->end) + " s)",
+        "give a time within /analysis start and end");
+  return false;
+}
+
+// "sse": the columns of "of" and the "targets" table, one row per time with one value
+// per column (docs/format.md "Targets").
+bool Compiler::CompileTargets(const OutputSpec& o, Reduction* r) {
+  const std::string& ptr = o.pointer;
+  bool ok = true;
+  r->columns = {r->column};
+  r->column_names = {r->of};
+  for (size_t k = 1; k < o.of_columns.size(); ++k) {
+    OutputColumn c;
+    ok = ResolveColumnName(o.of_columns[k], ptr + "/of/" + std::to_string(k), "'of'", &c) && ok;
+    r->columns.push_back(c);
+    r->column_names.push_back(o.of_columns[k]);
+  }
+  if (o.t) {
+    Error(ptr + "/t", "'t' goes with \"reduce\": \"at\" only", "an \"sse\" reads its times from \"targets\": {\"t\"}");
+    ok = false;
+  }
+  if (!o.targets) {
+    Error(ptr, "a reduction \"sse\" needs 'targets'",
+          "add \"targets\": {\"t\": [times], \"values\": [one value per time, or per time an array per column]}");
+    return false;
+  }
+  const OutputSpec::Targets& tg = *o.targets;
+  if (tg.values.size() != tg.t.size()) {
+    Error(ptr + "/targets/values", "'values' has " + std::to_string(tg.values.size()) + " entries for " +
+                                       std::to_string(tg.t.size()) + " times",
+          "give one entry per time in 't'");
+    return false;
+  }
+  for (size_t i = 0; i < tg.t.size(); ++i) {
+    ok = TimeInRun(tg.t[i], ptr + "/targets/t/" + std::to_string(i)) && ok;
+    if (tg.values[i].size() != r->columns.size()) {
+      Error(ptr + "/targets/values/" + std::to_string(i),
+            "a target row has " + std::to_string(tg.values[i].size()) + " values for " +
+                std::to_string(r->columns.size()) + " columns in 'of'",
+            "give one value per column of 'of', in its order");
+      ok = false;
+    }
+  }
+  r->target_t = tg.t;
+  r->target_values = tg.values;
+  return ok;
 }
 
 }  // namespace mechkin

@@ -137,6 +137,8 @@ class Compiler {
   void UnknownExpressionName(const std::string& name, const std::string& ptr);
   bool ResolveColumnName(const std::string& name, const std::string& ptr, const std::string& what, OutputColumn* in);
   void CompileReduction(const OutputSpec& o);
+  bool CompileTargets(const OutputSpec& o, Reduction* r);
+  bool TimeInRun(double t, const std::string& ptr);
   void CompileBounds(const std::vector<std::pair<std::string, Scalar>>& bounds, bool is_min);
   std::vector<const OutputSpec*> pending_reductions_;
   bool CompileOutputGeometry(const OutputSpec& o, Output* out);

@@ -253,7 +253,7 @@ struct Expect {
   std::vector<MotionBound> bounds;      // "min" then "max", each in file order
 };
 
-enum class ReduceKind { Min, Max, Rms, Mean, At };
+enum class ReduceKind { Min, Max, Rms, Mean, At, Sse };
 
 /// {"type": "reduction", "of", "reduce", "t"}: one number per run from a column
 /// (docs/format.md "Reductions"; computed by analysis/reduction.hpp).
@@ -263,6 +263,12 @@ struct Reduction {
   OutputColumn column;
   ReduceKind kind = ReduceKind::Min;
   double t = 0;  // At: the time (s)
+  // Sse (docs/format.md "Targets"): the columns (`column` is the first), their names as
+  // written, and the targets: per time target_t[i] one value per column (file units).
+  std::vector<OutputColumn> columns;
+  std::vector<std::string> column_names;
+  std::vector<double> target_t;
+  std::vector<std::vector<double>> target_values;
 };
 
 /// How `mechkin view` shows the model (the file's "view"; no effect on the motion).

@@ -29,7 +29,7 @@ bool OutputKeys(JsonReader& rd, const std::optional<std::string>& type, const st
     return add({"body1", "vector1", "body2", "vector2", "about"}, {"body1", "vector1", "body2", "vector2"});
   if (type && *type == "clearance") return add({"body1", "body2"}, {"body1", "body2"});
   if (type && *type == "expression") return add({"value"}, {"value"});
-  if (type && *type == "reduction") return add({"of", "reduce", "t"}, {"of", "reduce"});
+  if (type && *type == "reduction") return add({"of", "reduce", "t", "targets"}, {"of", "reduce"});
   if (type) {
     const std::vector<std::string> types = {"point",       "joint",      "distance",  "angle",
                                             "velocity_ratio", "orientation", "clearance", "expression",
@@ -40,8 +40,77 @@ bool OutputKeys(JsonReader& rd, const std::optional<std::string>& type, const st
   }
   allowed->insert(allowed->end(), {"body", "point", "joint", "body1", "point1", "body2", "point2", "vector1",
                                    "vector2", "about", "frame", "output", "input", "relative_to", "sequence",
-                                   "value", "of", "reduce", "t"});
+                                   "value", "of", "reduce", "t", "targets"});
   return false;
+}
+
+// A JSON number (an error at ptr otherwise).
+bool PlainNumber(JsonReader& rd, const json& v, const std::string& ptr, double* out) {
+  if (!v.is_number()) {
+    rd.Error(ptr, "a target must be a plain number, not " + TypeName(v));
+    return false;
+  }
+  *out = v.get<double>();
+  return true;
+}
+
+// "targets": {"t": [t_i], "values": [v_i] or [[v_i1, …]]} of an "sse" reduction
+// (docs/format.md "Targets"): the counts are checked against "of" at compile.
+std::optional<OutputSpec::Targets> ReadTargets(JsonReader& rd, const json& o, const std::string& ptr) {
+  if (!rd.CheckObject(o, ptr, {"t", "values"}, {"t", "values"}, "targets")) return std::nullopt;
+  const json &t = o.at("t"), &values = o.at("values");
+  if (!t.is_array() || t.empty()) {
+    rd.Error(ptr + "/t", "'t' must be a non-empty array of times (s), not " + TypeName(t));
+    return std::nullopt;
+  }
+  if (!values.is_array()) {
+    rd.Error(ptr + "/values", "'values' must be an array (one entry per time), not " + TypeName(values));
+    return std::nullopt;
+  }
+  OutputSpec::Targets out;
+  bool ok = true;
+  for (size_t i = 0; i < t.size(); ++i) {
+    double v = 0;
+    ok = PlainNumber(rd, t[i], ptr + "/t/" + std::to_string(i), &v) && ok;
+    out.t.push_back(v);
+  }
+  for (size_t i = 0; i < values.size(); ++i) {
+    const std::string p = ptr + "/values/" + std::to_string(i);
+    const json& row = values[i];
+    std::vector<double> r;
+    if (row.is_array()) {
+      for (size_t k = 0; k < row.size(); ++k) {
+        double v = 0;
+        ok = PlainNumber(rd, row[k], p + "/" + std::to_string(k), &v) && ok;
+        r.push_back(v);
+      }
+    } else {
+      double v = 0;
+      ok = PlainNumber(rd, row, p, &v) && ok;
+      r.push_back(v);
+    }
+    out.values.push_back(std::move(r));
+  }
+  if (!ok) return std::nullopt;
+  return out;
+}
+
+// "of" of a reduction: a column's name, or (for "sse") an array of them.
+void ReadOf(JsonReader& rd, const json& o, const std::string& ptr, OutputSpec* out) {
+  const json& of = o.at("of");
+  if (!of.is_array()) {
+    out->of = rd.String(o, "of", ptr);
+    return;
+  }
+  if (of.empty()) rd.Error(ptr + "/of", "'of' must name at least one column");
+  for (size_t k = 0; k < of.size(); ++k) {
+    if (!of[k].is_string()) {
+      rd.Error(ptr + "/of/" + std::to_string(k), "a column name must be a string, not " + TypeName(of[k]));
+      continue;
+    }
+    out->of_columns.push_back(of[k].get<std::string>());
+  }
+  if (!out->of_columns.empty()) out->of = out->of_columns.front();
 }
 
 FunctionSpec InvalidFunction(const std::string& ptr) {
@@ -166,10 +235,11 @@ void ReadOutput(JsonReader& rd, const json& o, const std::string& ptr, Mechanism
   const StringField strings[] = {{"body", &out.body}, {"frame", &out.frame}, {"joint", &out.joint},
                             {"body1", &out.body1}, {"body2", &out.body2}, {"output", &out.output},
                             {"input", &out.input}, {"relative_to", &out.relative_to}, {"sequence", &out.sequence},
-                            {"marker", &out.marker}, {"value", &out.value}, {"of", &out.of},
-                            {"reduce", &out.reduce}};
+                            {"marker", &out.marker}, {"value", &out.value}, {"reduce", &out.reduce}};
   for (auto [key, field] : strings)
     if (has(key)) *field = rd.String(o, key, ptr);
+  if (has("of") && o.contains("of")) ReadOf(rd, o, ptr, &out);
+  if (has("targets") && o.contains("targets")) out.targets = ReadTargets(rd, o.at("targets"), ptr + "/targets");
   const VectorField vectors[] = {{"point", &out.point}, {"point1", &out.point1}, {"point2", &out.point2},
                             {"vector1", &out.vector1}, {"vector2", &out.vector2}, {"about", &out.about}};
   for (auto [key, field] : vectors)

@@ -173,6 +173,15 @@ struct OutputSpec {
   std::optional<std::string> value;  // "expression": the text over earlier outputs, parameters and t
   std::optional<std::string> of, reduce;  // "reduction": the output reduced and how (min max rms mean at)
   std::optional<Scalar> t;                // "reduction" "at": the time (s)
+  // "reduction" "sse": "of" as an array of columns (empty: "of" is one column, a string).
+  std::vector<std::string> of_columns;
+  // "reduction" "sse": {"t": [t_i], "values": [v_i] or [[v_i1 … v_iK]]}, the target of
+  // each column at each time, in the column's file unit.
+  struct Targets {
+    std::vector<double> t;
+    std::vector<std::vector<double>> values;  // one row per t, one value per column
+  };
+  std::optional<Targets> targets;
   std::optional<Vector3Spec> point, point1, point2, vector1, vector2, about;
   std::string pointer;
 };

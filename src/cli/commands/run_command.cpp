@@ -237,7 +237,9 @@ void PrintReductions(const std::vector<ReductionResult>& results, std::ostream& 
       continue;
     }
     line << ": " << r.value << (r.unit.empty() ? "" : " " + r.unit);
-    if (r.kind != ReduceKind::Rms && r.kind != ReduceKind::Mean) line << " at t = " << r.t << " s";
+    if (r.kind == ReduceKind::Min || r.kind == ReduceKind::Max || r.kind == ReduceKind::At)
+      line << " at t = " << r.t << " s";
+    if (r.kind == ReduceKind::Sse) line << " (" << r.residuals.size() << " residuals against the targets)";
     for (size_t k = 0; k < r.wrt.size(); ++k) line << (k ? ", " : "; ") << "d/d(" << r.wrt[k] << ") = " << r.gradient[k];
     err << line.str() << "\n";
   }
