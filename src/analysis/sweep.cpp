@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <mutex>
 #include <random>
 #include <stdexcept>
 
@@ -154,20 +155,6 @@ std::vector<int> SummaryColumns(const MotionLayout& layout) {
   return cols;
 }
 
-std::string StatusOf(StopKind stop) {
-  switch (stop) {
-    case StopKind::None: return "complete";
-    case StopKind::Refused: return "refused";
-    case StopKind::AssemblyFailed: return "assembly";
-    case StopKind::SingularPosition: return "singular";
-    case StopKind::SolveFailed: return "failed";
-    case StopKind::Interrupted: return "interrupted";
-    case StopKind::JointLimit: return "joint limit";
-    case StopKind::Contact: return "contact";
-  }
-  return "failed";
-}
-
 // Min/max of the summary columns and the worst condition over a run's rows.
 void Summarize(const Motion& m, VariantSummary* v) {
   const std::vector<int> cols = SummaryColumns(m.layout());
@@ -184,7 +171,23 @@ void Summarize(const Motion& m, VariantSummary* v) {
   }
 }
 
+std::string StatusOf(StopKind stop) {
+  switch (stop) {
+    case StopKind::None: return "complete";
+    case StopKind::Refused: return "refused";
+    case StopKind::AssemblyFailed: return "assembly";
+    case StopKind::SingularPosition: return "singular";
+    case StopKind::SolveFailed: return "failed";
+    case StopKind::Interrupted: return "interrupted";
+    case StopKind::JointLimit: return "joint limit";
+    case StopKind::Contact: return "contact";
+  }
+  return "failed";
+}
+
 }  // namespace
+
+std::string VariantStatus(const Motion& m) { return m.report.limit ? "limit" : StatusOf(m.stop.kind); }
 
 std::vector<ColumnDescriptor> SweepColumnDescriptors(const Model& model, int order) {
   const MotionLayout layout(model, SweepTable(model, order));
@@ -211,7 +214,7 @@ VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, 
     return v;
   }
   const Motion m = RunMotion(*compiled.model, VariantRequest(*compiled.model, options.request));
-  v.status = m.report.limit ? "limit" : StatusOf(m.stop.kind);
+  v.status = VariantStatus(m);
   v.message = m.complete ? "" : m.stop.Summary();
   v.rows = m.rows();
   if (!m.complete && m.rows() > 0) v.t_stop = m.at(m.rows() - 1, 0);
@@ -242,12 +245,17 @@ SweepResult RunSweepShard(const Model& model, const ShardVariants& shard, const 
   result.columns = SweepColumns(model, options.request.order);
   result.variants.resize(shard.indices.size());
   std::vector<char> finished(shard.indices.size(), 0);
+  std::mutex progress_lock;
+  int done = 0;
   ParallelFor(static_cast<int>(shard.indices.size()), options.threads, [&](int k, int) {
     VariantSummary v = RunVariant(model, shard.variants[k], options);
     if (v.status == "interrupted") return;  // a summary of part of the motion: not reported
     result.variants[k] = std::move(v);
     result.variants[k].index = shard.indices[k];
     finished[k] = 1;
+    if (!options.progress) return;
+    std::lock_guard<std::mutex> hold(progress_lock);
+    options.progress(++done);
   }, options.request.interrupted);
   // Interrupted: the report keeps the variants that finished, in index order.
   size_t kept = 0;

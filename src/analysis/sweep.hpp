@@ -9,6 +9,7 @@
 // shards equal the unsharded sweep exactly.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -55,6 +56,8 @@ struct SweepOptions {
   RunRequest request = DefaultRequest();
   int threads = 0;        // 0: all cores
   int shard = 1, shards = 1;  // run the variants with index ≡ shard−1 (mod shards)
+  // Called after each finished variant with the count done (one call at a time).
+  std::function<void(int done)> progress;
   static RunRequest DefaultRequest() {
     RunRequest r;
     r.order = 1;
@@ -100,6 +103,8 @@ SweepResult RunSweepShard(const Model& model, const ShardVariants& shard, const 
 RunRequest VariantRequest(const Model& model, const RunRequest& request);
 /// One variant's summary (what RunSweep does per variant; the Python binding's unit of work).
 VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, const SweepOptions& options);
+/// A run's status as a sweep names it ("complete", "limit", "singular", ...: VariantSummary::status).
+std::string VariantStatus(const Motion& motion);
 /// The column headers a sweep of `model` summarises.
 std::vector<std::string> SweepColumns(const Model& model, int order);
 /// Those columns' descriptors (name and unit apart, as a Motion of the same order has them).
