@@ -433,17 +433,16 @@ py::dict SweepDataset(const LoadedModel& lm, const std::vector<ParameterOverride
   ValidateOrderAndTolerance(order, tol);
   ShardVariants shard;
   shard.total = total;
-  shard.variants = variants;
+  if (!variants.empty())
+    for (const auto& kv : variants.front()) shard.parameters.push_back(kv.first);
   for (size_t k = 0; k < variants.size(); ++k) {
     if (variants[k].size() != variants.front().size() ||
         !std::equal(variants[k].begin(), variants[k].end(), variants.front().begin(),
                     [](const auto& a, const auto& b) { return a.first == b.first; }))
       throw py::value_error("variant " + std::to_string(first + k * stride) +
                             " sets other parameters than the first: every variant must set the same ones");
-    shard.indices.push_back(static_cast<int>(first + k * stride));
+    shard.Add(static_cast<int>(first + k * stride), variants[k]);
   }
-  if (!variants.empty())
-    for (const auto& kv : variants.front()) shard.parameters.push_back(kv.first);
   RunRequest request;
   request.order = order;
   request.tolerance = tol;

@@ -232,3 +232,35 @@ def test_a_worker_killed_mid_sweep_loses_no_variant(whole, four_bar, tmp_path):
     got, _ = _read(path)
     for name in DATASETS:
         assert _same_bits(got[name], data[name]), name
+
+
+def _stderr_on_a_terminal(args):
+    """What a command writes to its stderr when that is a terminal (a pty)."""
+    import pty
+    master, slave = pty.openpty()
+    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=slave)
+    os.close(slave)
+    seen = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:  # EIO: the child closed the terminal
+            break
+        if not chunk:
+            break
+        seen += chunk
+    os.close(master)
+    assert proc.wait() == 0
+    return seen
+
+
+def test_progress_on_a_terminal_and_none_on_a_pipe(four_bar, tmp_path):
+    dataset = [BINARY, "sweep", four_bar, *GRID, "--curves", ",".join(CURVES), "--out", str(tmp_path / "d")]
+    summary = [BINARY, "sweep", four_bar, *GRID, "-o", str(tmp_path / "s.csv")]
+    for args, last in ((dataset, b"mechkin sweep: 20 variants in "), (summary, b"")):
+        seen = _stderr_on_a_terminal(args)
+        assert b"\r\x1b[K" in seen and b"20/20 variants, " in seen and b" variants/s" in seen, seen[:300]
+        assert last in seen
+        piped = subprocess.run(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        assert piped.returncode == 0 and b"\r" not in piped.stderr and b"20/20" not in piped.stderr
+        assert piped.stderr.startswith(last) and (last or not piped.stderr)

@@ -91,16 +91,24 @@ std::vector<std::string> KeysOf(const ParameterOverrides& v) {
 
 }  // namespace
 
+ParameterOverrides ShardVariants::Variant(size_t k) const {
+  ParameterOverrides v;
+  for (size_t p = 0; p < parameters.size(); ++p) v.emplace_hint(v.end(), parameters[p], values[k * parameters.size() + p]);
+  return v;
+}
+
+void ShardVariants::Add(int index, const ParameterOverrides& variant) {
+  indices.push_back(index);
+  for (const auto& kv : variant) values.push_back(kv.second);
+}
+
 ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards) {
   ShardVariants out;
   long long total = 1;
   for (const GridAxis& a : axes) total *= a.count;  // the caller bounds it (1e8)
   out.total = static_cast<int>(total);
   out.parameters = KeysOf(GridVariant(axes, 0));
-  for (long long i = shard - 1; i < total; i += shards) {
-    out.indices.push_back(static_cast<int>(i));
-    out.variants.push_back(GridVariant(axes, i));
-  }
+  for (long long i = shard - 1; i < total; i += shards) out.Add(static_cast<int>(i), GridVariant(axes, i));
   return out;
 }
 
@@ -119,11 +127,9 @@ ShardVariants SampleShard(const Model& model, int count, unsigned long seed, int
   ParameterOverrides v;
   for (int i = 0; i < count; ++i) {
     for (const Parameter* p : ranged) v[p->name] = *p->min + (*p->max - *p->min) * unit(rng);  // as SampleVariants
-    if (i % shards != shard - 1) continue;
-    out.indices.push_back(i);
-    out.variants.push_back(v);
+    if (i == 0) out.parameters = KeysOf(v);
+    if (i % shards == shard - 1) out.Add(i, v);
   }
-  out.parameters = KeysOf(v);
   return out;
 }
 
@@ -227,10 +233,7 @@ SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& 
   shard.total = static_cast<int>(variants.size());
   if (!variants.empty()) shard.parameters = KeysOf(variants.front());
   for (int i = 0; i < shard.total; ++i)
-    if (i % options.shards == options.shard - 1) {
-      shard.indices.push_back(i);
-      shard.variants.push_back(variants[i]);
-    }
+    if (i % options.shards == options.shard - 1) shard.Add(i, variants[i]);
   return RunSweepShard(model, shard, options);
 }
 
@@ -248,7 +251,7 @@ SweepResult RunSweepShard(const Model& model, const ShardVariants& shard, const 
   std::mutex progress_lock;
   int done = 0;
   ParallelFor(static_cast<int>(shard.indices.size()), options.threads, [&](int k, int) {
-    VariantSummary v = RunVariant(model, shard.variants[k], options);
+    VariantSummary v = RunVariant(model, shard.Variant(k), options);
     if (v.status == "interrupted") return;  // a summary of part of the motion: not reported
     result.variants[k] = std::move(v);
     result.variants[k].index = shard.indices[k];

@@ -39,9 +39,16 @@ std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, un
 /// the shard's share, not the sweep's size.
 struct ShardVariants {
   int total = 0;                         // variants in the whole sweep
-  std::vector<std::string> parameters;   // the varied parameters (the overrides' keys)
+  std::vector<std::string> parameters;   // the varied parameters (the overrides' keys, in their order)
   std::vector<int> indices;              // ascending
-  std::vector<ParameterOverrides> variants;  // per index, equal to GridVariants'/SampleVariants' entry
+  // Per index, the parameters' values (indices.size() × parameters.size()): 8 bytes a
+  // value rather than a map per variant, so a dataset sweep of 10⁵ variants stays small.
+  std::vector<double> values;
+  size_t size() const { return indices.size(); }
+  /// Variant k (equal to GridVariants'/SampleVariants' entry of indices[k]).
+  ParameterOverrides Variant(size_t k) const;
+  /// Appends variant `index` (its keys must be `parameters`).
+  void Add(int index, const ParameterOverrides& variant);
 };
 /// The grid's variants of shard `shard`/`shards`, each made from its index.
 ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards);

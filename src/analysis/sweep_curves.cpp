@@ -91,7 +91,7 @@ bool RunCurveSweep(const Model& model, const ShardVariants& shard, const CurveSe
   const InterruptPoll& interrupted = selection.request.interrupted;
   auto stop = [&] { return sink_failed || (interrupted && interrupted()); };
   ParallelFor(static_cast<int>(shard.indices.size()), threads, [&](int k, int) {
-    VariantCurves v = RunVariantCurves(model, shard.variants[k], selection);
+    VariantCurves v = RunVariantCurves(model, shard.Variant(k), selection);
     if (v.status == "interrupted") return;  // part of the motion: not kept
     v.index = shard.indices[k];
     v.position = k;

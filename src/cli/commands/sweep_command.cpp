@@ -104,6 +104,10 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
     err << "mechkin sweep: a dataset needs both --curves COL,... and --out DIR\n";
     return 2;
   }
+  if (!o.out_dir.empty() && (!o.output.empty() || o.format != "csv")) {
+    err << "mechkin sweep: -o and --format are the summary's; a dataset sweep writes its file into --out DIR\n";
+    return 2;
+  }
   if (o.merge && !o.out_dir.empty()) return RunDatasetMerge(o, err);
   OutputFile file;
   if (o.merge) {
