@@ -7,6 +7,7 @@
     motion.to_pandas()                   # needs pandas
     model.check().mobility.redundant     # the `mechkin check` report, field for field
     mechkin.sweep(model, [{"rod": 110}, {"rod": 130}])  # a pandas DataFrame, one row per variant
+    mechkin.sweep(model, variants, out="data", curves=["coupler_point.x"])  # every row, into data/sweep.h5
     mechkin.Mechanism("four-bar").add_body(...)  # a builder: to_dict(), compile() (mechkin/builder.py)
 
 Every front end validates through the same run request (mechkin.RunRequest):
