@@ -36,14 +36,30 @@ for count in $((n / 10)) "$n"; do
     "$(echo "$size / $count" | bc -l)" "$(echo "$peak / 1024" | bc -l)"
   if [ "$count" != "$n" ]; then rm -rf "$out"; fi
 done
-/usr/bin/python3 - "$work/data-$n/sweep.h5" <<'PY'
-import sys, time
+/usr/bin/python3 - "$work/data-$n/sweep.h5" "$build/mechkin" "$file" "$work" <<'PY'
+import json, random, subprocess, sys, time
 import h5py, numpy as np
+path, mechkin, model, work = sys.argv[1:]
 start = time.time()
-with h5py.File(sys.argv[1], "r") as f:
+with h5py.File(path, "r") as f:
     curves = f["curves"][()]
     status = f["status"][()]
     names = list(f["status"].attrs["names"])
+    parameters, keys, rows = f["parameters"][()], list(f["parameters"].attrs["names"]), f["rows"][()]
+    columns = list(f["curves"].attrs["columns"])
 print("h5py: curves %s read in %.2f s; statuses: %s" % (curves.shape, time.time() - start,
       ", ".join("%d %s" % (np.sum(status == k), names[k]) for k in np.unique(status))))
+# The acceptance: 5 random variants that ran equal `mechkin run --set ...` bit for bit.
+ran = [i for i in range(len(status)) if rows[i] > 0]
+same = 0
+picks = random.Random(31).sample(ran, 5)
+for i in picks:
+    sets = sum((["--set", "%s=%r" % (k, float(v))] for k, v in zip(keys, parameters[i])), [])
+    subprocess.run([mechkin, "run", model, *sets, "--order", "1", "--format", "json", "-o", work + "/run.json",
+                    "--quiet"], capture_output=True)
+    table = json.load(open(work + "/run.json"))
+    heads = [c["name"] for c in table["columns"]]
+    run = np.array([[row[heads.index(c)] for c in columns] for row in table["rows"]], dtype=np.float64)
+    same += run.tobytes() == np.ascontiguousarray(curves[i, :rows[i]]).tobytes()
+print("variants %s against mechkin run --set: %d of 5 equal bit for bit" % (picks, same))
 PY
