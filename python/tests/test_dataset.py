@@ -171,6 +171,10 @@ def test_a_merge_refuses_parts_of_another_sweep(whole, four_bar, tmp_path):
     parts = [tmp_path / "sweep-shard-1-of-3.h5", other / "sweep-shard-2-of-3.h5", tmp_path / "sweep-shard-3-of-3.h5"]
     r = _mechkin("sweep", "--merge", "--out", tmp_path, *parts, check=False)
     assert r.returncode == 1 and "another sweep" in r.stderr
+    r = _mechkin("sweep", "--merge", "--out", tmp_path, tmp_path / "none.h5", check=False)
+    assert r.returncode == 1 and "cannot open" in r.stderr
+    r = _mechkin("sweep", "--merge", "--out", tmp_path, four_bar, check=False)
+    assert r.returncode == 1 and "is not an HDF5 file" in r.stderr
 
 
 def test_an_unknown_curve_column_is_refused_with_the_columns_there_are(four_bar, tmp_path):

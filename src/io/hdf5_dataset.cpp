@@ -355,6 +355,11 @@ bool ReadShape(hid_t f, DatasetShape* s) {
 bool ReadPart(const std::string& path, const std::string& out_folder, Part* part, std::string* error) {
   part->path = path;
   part->relative = std::filesystem::absolute(path).lexically_normal().lexically_relative(out_folder).string();
+  std::error_code exists_error;
+  if (!std::filesystem::is_regular_file(path, exists_error)) {
+    *error = "cannot open '" + path + "': no such file";
+    return false;
+  }
   if (H5Fis_hdf5(path.c_str()) <= 0) {
     *error = "'" + path + "' is not an HDF5 file (a dataset written by sweep --curves --out)";
     return false;
