@@ -223,9 +223,15 @@ def test_a_worker_killed_mid_sweep_loses_no_variant(whole, four_bar, tmp_path):
         """Ends its worker's process (os._exit) as the sweep's first task starts there."""
 
         def transition(self, key, start, finish, **kwargs):
-            if finish == "executing" and "mechkin-dataset-part" in str(key) and not os.path.exists(marker):
-                open(marker, "w").write(str(key))
-                os._exit(1)
+            if finish != "executing" or "mechkin-dataset-part" not in str(key):
+                return
+            try:  # created exclusively: one worker of the two dies, once
+                fd = os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+            except FileExistsError:
+                return
+            os.write(fd, str(key).encode())
+            os.close(fd)
+            os._exit(1)
 
     out = tmp_path / "data"
     with cluster, distributed.Client(cluster) as client:

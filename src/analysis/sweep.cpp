@@ -97,6 +97,11 @@ ParameterOverrides ShardVariants::Variant(size_t k) const {
   return v;
 }
 
+void ShardVariants::Reserve(size_t count) {
+  indices.reserve(count);
+  values.reserve(count * parameters.size());
+}
+
 void ShardVariants::Add(int index, const ParameterOverrides& variant) {
   indices.push_back(index);
   for (const auto& kv : variant) values.push_back(kv.second);
@@ -108,6 +113,7 @@ ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards
   for (const GridAxis& a : axes) total *= a.count;  // the caller bounds it (1e8)
   out.total = static_cast<int>(total);
   out.parameters = KeysOf(GridVariant(axes, 0));
+  out.Reserve(static_cast<size_t>((total - (shard - 1) + shards - 1) / shards));
   for (long long i = shard - 1; i < total; i += shards) out.Add(static_cast<int>(i), GridVariant(axes, i));
   return out;
 }
@@ -125,9 +131,11 @@ ShardVariants SampleShard(const Model& model, int count, unsigned long seed, int
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   ParameterOverrides v;
+  for (const Parameter* p : ranged) out.parameters.push_back(p->name);
+  std::sort(out.parameters.begin(), out.parameters.end());  // the overrides' key order
+  out.Reserve(static_cast<size_t>((count - (shard - 1) + shards - 1) / shards));
   for (int i = 0; i < count; ++i) {
     for (const Parameter* p : ranged) v[p->name] = *p->min + (*p->max - *p->min) * unit(rng);  // as SampleVariants
-    if (i == 0) out.parameters = KeysOf(v);
     if (i % shards == shard - 1) out.Add(i, v);
   }
   return out;

@@ -47,6 +47,8 @@ struct ShardVariants {
   size_t size() const { return indices.size(); }
   /// Variant k (equal to GridVariants'/SampleVariants' entry of indices[k]).
   ParameterOverrides Variant(size_t k) const;
+  /// Room for `count` variants (set `parameters` first): no growth by doubling.
+  void Reserve(size_t count);
   /// Appends variant `index` (its keys must be `parameters`).
   void Add(int index, const ParameterOverrides& variant);
 };
