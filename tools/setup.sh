@@ -14,10 +14,10 @@ with_tests=0
 if [ "${1:-}" = "--with-tests" ]; then with_tests=1; shift; fi
 build="${1:-build}"; shift || true
 main_pkgs=(g++ cmake ninja-build libeigen3-dev libceres-dev libsuitesparse-dev nlohmann-json3-dev libcli11-dev libfcl-dev
-           libtinyxml2-dev libzip-dev
+           libtinyxml2-dev libzip-dev libhdf5-dev
            python3 python3-dev pybind11-dev python3-numpy python3-pandas libjs-three)
 test_pkgs=(libgtest-dev libgmock-dev libbenchmark-dev python3-jsonschema python3-pytest python3-pil python3-yaml git
-           python3-dask python3-distributed chromium clang libclang-rt-14-dev libsimbody-dev)
+           python3-dask python3-distributed python3-h5py chromium clang libclang-rt-14-dev libsimbody-dev)
 # --print-packages main|tests: the list only (tools/install_times.sh times them on a fresh system).
 if [ "$with_tests" -eq 0 ] && [ "${build}" = "--print-packages" ]; then
   if [ "${1:-main}" = "tests" ]; then echo "${test_pkgs[@]}"; else echo "${main_pkgs[@]}"; fi

@@ -7,6 +7,7 @@
     motion.to_pandas()                   # needs pandas
     model.check().mobility.redundant     # the `mechkin check` report, field for field
     mechkin.sweep(model, [{"rod": 110}, {"rod": 130}])  # a pandas DataFrame, one row per variant
+    mechkin.sweep(model, variants, out="data", curves=["coupler_point.x"])  # every row, into data/sweep.h5
     mechkin.Mechanism("four-bar").add_body(...)  # a builder: to_dict(), compile() (mechkin/builder.py)
 
 Every front end validates through the same run request (mechkin.RunRequest):
@@ -597,7 +598,7 @@ def _sweep_frame(model, variants, summaries, order):
     return df
 
 
-def sweep(model, variants, client=None, order=1, tol=1e-10, threads=None):
+def sweep(model, variants, client=None, order=1, tol=1e-10, threads=None, out=None, curves=None, chunk=None):
     """Runs every variant (a dict of parameter values, file units) of `model` and
     returns a pandas DataFrame with one row per variant, in order.
 
@@ -613,9 +614,21 @@ def sweep(model, variants, client=None, order=1, tol=1e-10, threads=None):
     order and tol are a RunRequest's (ValueError with the CLI's message when out of
     range). client: a dask.distributed Client — the variants are mapped over its
     workers (the model pickles as its file text and parameter values). Without one,
-    local threads run them (the C++ core releases the GIL)."""
+    local threads run them (the C++ core releases the GIL).
+
+    Dataset sweeps (docs/datasets.md): with out=FOLDER and curves=[column names, e.g.
+    "coupler_point.x"], every row of those columns of every variant is streamed into
+    the HDF5 file FOLDER/sweep.h5 (read it with h5py), nothing held in memory, and its
+    path is returned. With a client, each task writes its chunk of `chunk` variants
+    (default: about four tasks per worker, at most 1000 variants) to its own part file
+    FOLDER/part-NNNNN.h5 under a temporary name renamed when whole, so a task retried
+    after its worker died rewrites its part; then sweep.h5 is made over the parts
+    (virtual datasets, no data copied). FOLDER must be one the workers and the caller
+    share (a cluster's shared file system)."""
     RunRequest(order=int(order), tol=float(tol)).validate()
     variants = [dict(v) for v in variants]
+    if out is not None or curves is not None:
+        return _sweep_dataset(model, variants, client, int(order), float(tol), threads, out, curves, chunk)
     if client is not None:
         shared = client.scatter(model, broadcast=True)
         futures = client.map(_run_variant, [shared] * len(variants), variants, order=order, tol=tol, pure=False)
@@ -639,3 +652,47 @@ def sweep(model, variants, client=None, order=1, tol=1e-10, threads=None):
                     _mechkin.stop_all(False)
                 raise
     return _sweep_frame(model, variants, summaries, order)
+
+
+def _dataset_part(model, variants, first, total, curves, order, tol, path, identity):
+    """One task of a dataset sweep on a cluster: its variants into its own part file."""
+    return path, model._core.sweep_dataset(variants, first, 1, total, curves, order, tol, 1, path, identity)
+
+
+def _sweep_dataset(model, variants, client, order, tol, threads, out, curves, chunk):
+    import hashlib
+    import os
+    import uuid
+    if out is None or not curves:
+        raise ValueError("a dataset sweep needs both out=FOLDER and curves=[column names], "
+                         "e.g. curves=['coupler_point.x', 'coupler_point.y']")
+    curves = [curves] if isinstance(curves, str) else [str(c) for c in curves]
+    keys = sorted(variants[0]) if variants else []
+    for k, v in enumerate(variants):
+        if sorted(v) != keys:
+            raise ValueError("variant %d sets %s, the first sets %s: every variant must set the same parameters"
+                             % (k, sorted(v), keys))
+    variants = [{name: float(value) for name, value in v.items()} for v in variants]
+    out = os.path.abspath(str(out))
+    os.makedirs(out, exist_ok=True)
+    target = os.path.join(out, "sweep.h5")
+    digest = hashlib.sha1((model._core.text + _json.dumps(dict(model._core.overrides), sort_keys=True)).encode())
+    identity = _json.dumps({"model_sha1": digest.hexdigest(), "order": order, "tol": tol, "curves": curves,
+                            "variants": len(variants)}, sort_keys=True)
+    if client is None:
+        model._core.sweep_dataset(variants, 0, 1, len(variants), curves, order, tol, int(threads or 0), target,
+                                  identity)
+        return target
+    workers = max(1, len(client.scheduler_info().get("workers", {})))
+    size = int(chunk) if chunk else max(1, min(1000, -(-len(variants) // (4 * workers))))
+    firsts = list(range(0, len(variants), size))
+    paths = [os.path.join(out, "part-%05d.h5" % k) for k in range(len(firsts))]
+    token = uuid.uuid4().hex[:8]
+    shared = client.scatter(model, broadcast=True)
+    futures = client.map(_dataset_part, [shared] * len(firsts), [variants[f:f + size] for f in firsts], firsts,
+                         [len(variants)] * len(firsts), [curves] * len(firsts), [order] * len(firsts),
+                         [tol] * len(firsts), paths, [identity] * len(firsts),
+                         key=["mechkin-dataset-part-%s-%05d" % (token, k) for k in range(len(firsts))])
+    client.gather(futures)
+    _mechkin.merge_dataset(paths, target)
+    return target

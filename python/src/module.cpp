@@ -5,8 +5,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -18,8 +20,10 @@
 #include "analysis/range.hpp"
 #include "analysis/run_request.hpp"
 #include "analysis/sweep.hpp"
+#include "analysis/sweep_curves.hpp"
 #include "analysis/tolerance.hpp"
 #include "io/check_report_writer.hpp"
+#include "io/hdf5_dataset.hpp"
 #include "io/load_any.hpp"
 #include "io/range_report_writer.hpp"
 #include "io/table_writer.hpp"
@@ -483,6 +487,72 @@ py::tuple SweepColumnsOf(const LoadedModel& lm, int order) {
   return py::make_tuple(names, units);
 }
 
+// A dataset file of `variants`, the variants first + k·stride of a sweep of `total`
+// (io/hdf5_dataset.hpp; mechkin.sweep(out=...) writes one per task), on `threads`, the
+// GIL released: {status: count}. Raises ValueError for an unknown column or variants
+// that vary different parameters, RuntimeError when the file cannot be written.
+py::dict SweepDataset(const LoadedModel& lm, const std::vector<ParameterOverrides>& variants, int first, int stride,
+                      int total, const std::vector<std::string>& curves, int order, double tol, int threads,
+                      const std::string& path, const std::string& identity) {
+  ValidateOrderAndTolerance(order, tol);
+  ShardVariants shard;
+  shard.total = total;
+  if (!variants.empty())
+    for (const auto& kv : variants.front()) shard.parameters.push_back(kv.first);
+  for (size_t k = 0; k < variants.size(); ++k) {
+    if (variants[k].size() != variants.front().size() ||
+        !std::equal(variants[k].begin(), variants[k].end(), variants.front().begin(),
+                    [](const auto& a, const auto& b) { return a.first == b.first; }))
+      throw py::value_error("variant " + std::to_string(first + k * stride) +
+                            " sets other parameters than the first: every variant must set the same ones");
+    shard.Add(static_cast<int>(first + k * stride), variants[k]);
+  }
+  RunRequest request;
+  request.order = order;
+  request.tolerance = tol;
+  const PythonInterrupt interrupt;
+  request.interrupted = interrupt.Poll();
+  CurveSelection selection;
+  std::string why;
+  if (!SelectCurves(*lm.model, request, curves, &selection, &why)) throw py::value_error(why);
+  DatasetShape shape = ShapeOf(shard, selection);
+  shape.first = first, shape.stride = stride;
+  shape.identity = identity;
+  shape.source = lm.source;
+  std::map<std::string, int> statuses;
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    DatasetWriter writer;
+    ok = writer.Create(path, shape, &why) &&
+         RunCurveSweep(*lm.model, shard, selection, threads, [&](VariantCurves&& v) {
+           ++statuses[v.status];
+           return writer.Write(v, &why);
+         }) && writer.Finish(false, &why);
+  }
+  interrupt.RethrowIfRaised();
+  int done = 0;
+  for (const auto& kv : statuses) done += kv.second;
+  if (!ok)
+    throw std::runtime_error(why.empty() ? "the dataset sweep was interrupted after " + std::to_string(done) + " of " +
+                                               std::to_string(variants.size()) + " variants"
+                                         : why);
+  py::dict out;
+  for (const auto& [status, n] : statuses) out[py::str(status)] = n;
+  return out;
+}
+
+// One dataset file over the parts (virtual datasets, io/hdf5_dataset.hpp).
+void MergeDatasetParts(const std::vector<std::string>& parts, const std::string& out) {
+  std::string why;
+  bool ok;
+  {
+    py::gil_scoped_release release;
+    ok = MergeDatasets(parts, out, &why);
+  }
+  if (!ok) throw std::runtime_error(why);
+}
+
 py::dict ModelInfo(const LoadedModel& lm) {
   const Model& m = *lm.model;
   py::dict d;
@@ -549,6 +619,9 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def_readonly("overrides", &LoadedModel::overrides)
       .def("run_variant", &RunVariantSummary, py::arg("values"), py::arg("order"), py::arg("tol"))
       .def("sweep_columns", &SweepColumnsOf, py::arg("order"))
+      .def("sweep_dataset", &SweepDataset, py::arg("variants"), py::arg("first"), py::arg("stride"), py::arg("total"),
+           py::arg("curves"), py::arg("order"), py::arg("tol"), py::arg("threads"), py::arg("path"),
+           py::arg("identity"))
       .def("range", &RangeOfModel, py::arg("driver"), py::arg("steps"), py::arg("span"), py::arg("tol"))
       .def("tolerance", &ToleranceOfModel, py::arg("order"), py::arg("monte_carlo"), py::arg("seed"),
            py::arg("threads"), py::arg("tol"));
@@ -562,6 +635,8 @@ PYBIND11_MODULE(_mechkin, mod) {
       .def_property_readonly("forces", [](const PyMotion& m) { return m.motion->layout().options().forces; });
   mod.def("compile", &CompileText, py::arg("text"), py::arg("source"), py::arg("overrides") = ParameterOverrides{});
   mod.def("compile_file", &CompileFile, py::arg("path"), py::arg("overrides"), py::arg("drives"), py::arg("span"));
+  mod.def("merge_dataset", &MergeDatasetParts, py::arg("parts"), py::arg("out"));
+  mod.def("sweep_statuses", [] { return SweepStatusNames(); }, "status names in code order (a dataset's status)");
   mod.def("foreign_format", [](const std::string& path) { return importers::FormatName(ForeignFormatOf(path)); });
   mod.def("motion_from_state", &MotionFromState, py::arg("model"), py::arg("order"), py::arg("si"), py::arg("bodies"),
           py::arg("outputs"), py::arg("forces"), py::arg("values"), py::arg("complete"), py::arg("stop"),

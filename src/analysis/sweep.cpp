@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <mutex>
 #include <random>
 #include <stdexcept>
 
@@ -90,16 +91,30 @@ std::vector<std::string> KeysOf(const ParameterOverrides& v) {
 
 }  // namespace
 
+ParameterOverrides ShardVariants::Variant(size_t k) const {
+  ParameterOverrides v;
+  for (size_t p = 0; p < parameters.size(); ++p) v.emplace_hint(v.end(), parameters[p], values[k * parameters.size() + p]);
+  return v;
+}
+
+void ShardVariants::Reserve(size_t count) {
+  indices.reserve(count);
+  values.reserve(count * parameters.size());
+}
+
+void ShardVariants::Add(int index, const ParameterOverrides& variant) {
+  indices.push_back(index);
+  for (const auto& kv : variant) values.push_back(kv.second);
+}
+
 ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards) {
   ShardVariants out;
   long long total = 1;
   for (const GridAxis& a : axes) total *= a.count;  // the caller bounds it (1e8)
   out.total = static_cast<int>(total);
   out.parameters = KeysOf(GridVariant(axes, 0));
-  for (long long i = shard - 1; i < total; i += shards) {
-    out.indices.push_back(static_cast<int>(i));
-    out.variants.push_back(GridVariant(axes, i));
-  }
+  out.Reserve(static_cast<size_t>((total - (shard - 1) + shards - 1) / shards));
+  for (long long i = shard - 1; i < total; i += shards) out.Add(static_cast<int>(i), GridVariant(axes, i));
   return out;
 }
 
@@ -116,13 +131,13 @@ ShardVariants SampleShard(const Model& model, int count, unsigned long seed, int
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   ParameterOverrides v;
+  for (const Parameter* p : ranged) out.parameters.push_back(p->name);
+  std::sort(out.parameters.begin(), out.parameters.end());  // the overrides' key order
+  out.Reserve(static_cast<size_t>((count - (shard - 1) + shards - 1) / shards));
   for (int i = 0; i < count; ++i) {
     for (const Parameter* p : ranged) v[p->name] = *p->min + (*p->max - *p->min) * unit(rng);  // as SampleVariants
-    if (i % shards != shard - 1) continue;
-    out.indices.push_back(i);
-    out.variants.push_back(v);
+    if (i % shards == shard - 1) out.Add(i, v);
   }
-  out.parameters = KeysOf(v);
   return out;
 }
 
@@ -154,20 +169,6 @@ std::vector<int> SummaryColumns(const MotionLayout& layout) {
   return cols;
 }
 
-std::string StatusOf(StopKind stop) {
-  switch (stop) {
-    case StopKind::None: return "complete";
-    case StopKind::Refused: return "refused";
-    case StopKind::AssemblyFailed: return "assembly";
-    case StopKind::SingularPosition: return "singular";
-    case StopKind::SolveFailed: return "failed";
-    case StopKind::Interrupted: return "interrupted";
-    case StopKind::JointLimit: return "joint limit";
-    case StopKind::Contact: return "contact";
-  }
-  return "failed";
-}
-
 // Min/max of the summary columns and the worst condition over a run's rows.
 void Summarize(const Motion& m, VariantSummary* v) {
   const std::vector<int> cols = SummaryColumns(m.layout());
@@ -184,7 +185,23 @@ void Summarize(const Motion& m, VariantSummary* v) {
   }
 }
 
+std::string StatusOf(StopKind stop) {
+  switch (stop) {
+    case StopKind::None: return "complete";
+    case StopKind::Refused: return "refused";
+    case StopKind::AssemblyFailed: return "assembly";
+    case StopKind::SingularPosition: return "singular";
+    case StopKind::SolveFailed: return "failed";
+    case StopKind::Interrupted: return "interrupted";
+    case StopKind::JointLimit: return "joint limit";
+    case StopKind::Contact: return "contact";
+  }
+  return "failed";
+}
+
 }  // namespace
+
+std::string VariantStatus(const Motion& m) { return m.report.limit ? "limit" : StatusOf(m.stop.kind); }
 
 std::vector<ColumnDescriptor> SweepColumnDescriptors(const Model& model, int order) {
   const MotionLayout layout(model, SweepTable(model, order));
@@ -211,7 +228,7 @@ VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, 
     return v;
   }
   const Motion m = RunMotion(*compiled.model, VariantRequest(*compiled.model, options.request));
-  v.status = m.report.limit ? "limit" : StatusOf(m.stop.kind);
+  v.status = VariantStatus(m);
   v.message = m.complete ? "" : m.stop.Summary();
   v.rows = m.rows();
   if (!m.complete && m.rows() > 0) v.t_stop = m.at(m.rows() - 1, 0);
@@ -224,10 +241,7 @@ SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& 
   shard.total = static_cast<int>(variants.size());
   if (!variants.empty()) shard.parameters = KeysOf(variants.front());
   for (int i = 0; i < shard.total; ++i)
-    if (i % options.shards == options.shard - 1) {
-      shard.indices.push_back(i);
-      shard.variants.push_back(variants[i]);
-    }
+    if (i % options.shards == options.shard - 1) shard.Add(i, variants[i]);
   return RunSweepShard(model, shard, options);
 }
 
@@ -242,12 +256,17 @@ SweepResult RunSweepShard(const Model& model, const ShardVariants& shard, const 
   result.columns = SweepColumns(model, options.request.order);
   result.variants.resize(shard.indices.size());
   std::vector<char> finished(shard.indices.size(), 0);
+  std::mutex progress_lock;
+  int done = 0;
   ParallelFor(static_cast<int>(shard.indices.size()), options.threads, [&](int k, int) {
-    VariantSummary v = RunVariant(model, shard.variants[k], options);
+    VariantSummary v = RunVariant(model, shard.Variant(k), options);
     if (v.status == "interrupted") return;  // a summary of part of the motion: not reported
     result.variants[k] = std::move(v);
     result.variants[k].index = shard.indices[k];
     finished[k] = 1;
+    if (!options.progress) return;
+    std::lock_guard<std::mutex> hold(progress_lock);
+    options.progress(++done);
   }, options.request.interrupted);
   // Interrupted: the report keeps the variants that finished, in index order.
   size_t kept = 0;

@@ -9,6 +9,7 @@
 // shards equal the unsharded sweep exactly.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -38,9 +39,18 @@ std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, un
 /// the shard's share, not the sweep's size.
 struct ShardVariants {
   int total = 0;                         // variants in the whole sweep
-  std::vector<std::string> parameters;   // the varied parameters (the overrides' keys)
+  std::vector<std::string> parameters;   // the varied parameters (the overrides' keys, in their order)
   std::vector<int> indices;              // ascending
-  std::vector<ParameterOverrides> variants;  // per index, equal to GridVariants'/SampleVariants' entry
+  // Per index, the parameters' values (indices.size() × parameters.size()): 8 bytes a
+  // value rather than a map per variant, so a dataset sweep of 10⁵ variants stays small.
+  std::vector<double> values;
+  size_t size() const { return indices.size(); }
+  /// Variant k (equal to GridVariants'/SampleVariants' entry of indices[k]).
+  ParameterOverrides Variant(size_t k) const;
+  /// Room for `count` variants (set `parameters` first): no growth by doubling.
+  void Reserve(size_t count);
+  /// Appends variant `index` (its keys must be `parameters`).
+  void Add(int index, const ParameterOverrides& variant);
 };
 /// The grid's variants of shard `shard`/`shards`, each made from its index.
 ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards);
@@ -55,6 +65,8 @@ struct SweepOptions {
   RunRequest request = DefaultRequest();
   int threads = 0;        // 0: all cores
   int shard = 1, shards = 1;  // run the variants with index ≡ shard−1 (mod shards)
+  // Called after each finished variant with the count done (one call at a time).
+  std::function<void(int done)> progress;
   static RunRequest DefaultRequest() {
     RunRequest r;
     r.order = 1;
@@ -100,6 +112,8 @@ SweepResult RunSweepShard(const Model& model, const ShardVariants& shard, const 
 RunRequest VariantRequest(const Model& model, const RunRequest& request);
 /// One variant's summary (what RunSweep does per variant; the Python binding's unit of work).
 VariantSummary RunVariant(const Model& model, const ParameterOverrides& values, const SweepOptions& options);
+/// A run's status as a sweep names it ("complete", "limit", "singular", ...: VariantSummary::status).
+std::string VariantStatus(const Motion& motion);
 /// The column headers a sweep of `model` summarises.
 std::vector<std::string> SweepColumns(const Model& model, int order);
 /// Those columns' descriptors (name and unit apart, as a Motion of the same order has them).

@@ -129,9 +129,9 @@ int RunCheck(const CheckOptions& options, std::ostream& out, std::ostream& err) 
   // On a terminal only (a redirected or captured stderr gets the summary alone), and
   // not over reports written to that terminal.
   const bool reports_on_terminal = !to_file && &out == &std::cout && ::isatty(STDOUT_FILENO);
-  CheckProgress progress(&err == &std::cerr && ::isatty(STDERR_FILENO) && !reports_on_terminal && !options.quiet &&
+  ProgressLine progress(&err == &std::cerr && ::isatty(STDERR_FILENO) && !reports_on_terminal && !options.quiet &&
                              plan.files.size() > 1,
-                         plan.files.size(), err);
+                         plan.files.size(), "files", err);
   size_t done = 0;
   bool write_failed = false;
   CheckFiles(plan.files, RequestOf(options, overrides, foreign), options.jobs, options.sorted,

@@ -112,33 +112,6 @@ void PrintCounts(const std::map<CheckVerdict, size_t>& counts, std::ostream& err
 
 }  // namespace
 
-CheckProgress::CheckProgress(bool enabled, size_t total, std::ostream& err)
-    : enabled_(enabled), total_(total), err_(err), start_(std::chrono::steady_clock::now()), shown_(start_) {}
-
-void CheckProgress::Update(size_t done) {
-  if (!enabled_) return;
-  const auto now = std::chrono::steady_clock::now();
-  if (now - shown_ < std::chrono::milliseconds(200) && done < total_) return;
-  shown_ = now;
-  const double seconds = std::chrono::duration<double>(now - start_).count();
-  const double rate = seconds > 0 ? done / seconds : 0;
-  err_ << "\r\033[K" << done << "/" << total_ << " files, " << std::fixed << std::setprecision(1) << rate << " files/s";
-  if (rate > 0 && done < total_) {
-    const long left = std::lround((total_ - done) / rate);
-    err_ << ", ";
-    if (left >= 60) err_ << left / 60 << " min ";
-    err_ << left % 60 << " s left";
-  }
-  err_.unsetf(std::ios::floatfield);
-  err_ << std::setprecision(6) << std::flush;
-  drawn_ = true;
-}
-
-void CheckProgress::Finish() {
-  if (drawn_) err_ << "\r\033[K" << std::flush;
-  drawn_ = false;
-}
-
 void CheckTally::PrintSummary(int jobs, std::ostream& err) const {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   err << std::fixed << std::setprecision(2) << "mechkin check: " << checked_ << (checked_ == 1 ? " file" : " files")

@@ -12,6 +12,7 @@
 
 #include "analysis/check_file.hpp"
 #include "cli/commands/check_command.hpp"
+#include "cli/commands/progress.hpp"
 
 namespace mechkin {
 
@@ -44,21 +45,5 @@ class CheckTally {
   int exit_code_ = 0;
 };
 
-/// Progress of a long check on a terminal's stderr ("\r 120/10000 files, 85 files/s,
-/// 1 min 56 s left"), at most five updates a second; off (nothing written) unless enabled.
-class CheckProgress {
- public:
-  CheckProgress(bool enabled, size_t total, std::ostream& err);
-  void Update(size_t done);
-  /// Clears the progress line (before the summary).
-  void Finish();
-
- private:
-  bool enabled_;
-  size_t total_;
-  std::ostream& err_;
-  std::chrono::steady_clock::time_point start_, shown_;
-  bool drawn_ = false;
-};
 
 }  // namespace mechkin

@@ -1,9 +1,13 @@
 #include "cli/commands/sweep_command.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <iostream>
 
 #include "analysis/sweep.hpp"
 #include "cli/commands/load_for_command.hpp"
+#include "cli/commands/progress.hpp"
 #include "cli/commands/request_options.hpp"
 #include "io/sweep_writer.hpp"
 
@@ -24,7 +28,10 @@ void SetupSweepCommand(CLI::App& app, SweepCommandOptions* o) {
   AddOrderOption(cmd, &o->request, "Derivative orders summarised (default 1)");
   AddToleranceOption(cmd, &o->request, "Position tolerance of every run (default 1e-10)");
   cmd->add_option("--set", o->set, "Parameter value replacing the file's for every variant: NAME=NUMBER");
-  cmd->add_flag("--merge", o->merge, "Join shard files written with --format json");
+  cmd->add_flag("--merge", o->merge, "Join shard files written with --format json (with --out: dataset parts)");
+  cmd->add_option("--curves", o->curves, "COL,...: keep every row of these columns (e.g. coupler_point.x) in a dataset")
+      ->delimiter(',');
+  cmd->add_option("--out", o->out_dir, "Folder of the dataset (HDF5, docs/datasets.md): sweep.h5 or a shard's file");
   AddKeepPartialOption(cmd, &o->keep_partial, "the variants finished");
 }
 
@@ -93,6 +100,15 @@ bool Variants(const SweepCommandOptions& o, const Model& model, const SweepOptio
 }  // namespace
 
 int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostream& err) {
+  if (o.out_dir.empty() != o.curves.empty() && !(o.merge && !o.out_dir.empty())) {
+    err << "mechkin sweep: a dataset needs both --curves COL,... and --out DIR\n";
+    return 2;
+  }
+  if (!o.out_dir.empty() && (!o.output.empty() || o.format != "csv")) {
+    err << "mechkin sweep: -o and --format are the summary's; a dataset sweep writes its file into --out DIR\n";
+    return 2;
+  }
+  if (o.merge && !o.out_dir.empty()) return RunDatasetMerge(o, err);
   OutputFile file;
   if (o.merge) {
     if (!Open(o, &file, out, err)) return 1;
@@ -119,11 +135,19 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
   if (!model) return 1;
   ShardVariants variants;
   if (!Variants(o, *model, options, &variants, err)) return 2;
+  if (!o.out_dir.empty()) return RunDatasetSweep(o, *model, variants, options, overrides, err);
   if (!Open(o, &file, out, err)) return 1;
   options.request = o.request;
   options.request.interrupted = InstallInterruptPoll(o.keep_partial);
   options.threads = o.threads;
+  // Progress on a terminal's stderr, not over a summary written to that terminal.
+  const bool summary_on_terminal = (o.output.empty() || o.output == "-") && &out == &std::cout && ::isatty(STDOUT_FILENO);
+  ProgressLine progress(&err == &std::cerr && ::isatty(STDERR_FILENO) && !summary_on_terminal &&
+                            variants.indices.size() > 1,
+                        variants.indices.size(), "variants", err);
+  options.progress = [&](int done) { progress.Update(done); };
   SweepResult result = RunSweepShard(*model, variants, options);
+  progress.Finish();
   if (o.format == "json")
     result.identity = SweepIdentityText({o.files.front(), o.request.order, o.request.tolerance,
                                          static_cast<int>(o.request.solver), overrides, o.grid, o.samples, o.seed});
