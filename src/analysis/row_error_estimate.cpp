@@ -125,7 +125,7 @@ void RowErrorEstimator::Propagate(KinematicsWorkspace& ws, const SystemState& s,
     jac_->Fill(sys_, moved);
     CalcRhs(sys_, moved, k, Formulation::Omega, &full_);
     Eigen::VectorXd& residual = side == 0 ? plus_ : minus_;
-    residual = jac_->matrix() * x_;
+    residual.noalias() = jac_->matrix() * x_;  // into the held buffer: no temporary per row
     for (size_t r = 0; r < rows_.size(); ++r) residual[r] -= full_[rows_[r]];
   }
   rhs_ = (minus_ - plus_) / (2 * h_);
@@ -141,7 +141,7 @@ bool RowErrorEstimator::SolveErrors(KinematicsWorkspace& ws, const SystemState& 
       x_.segment<3>(6 * b + 3) = s.bodies[b].w[k - 1];
     }
     CalcRhs(sys_, s, k, Formulation::Omega, &full_);
-    plus_ = jac_->matrix() * x_;
+    plus_.noalias() = jac_->matrix() * x_;
     for (size_t r = 0; r < rows_.size(); ++r) plus_[r] -= full_[rows_[r]];
     if (!ws.factorization().SolveLinear(plus_, &seed_[k]) || !seed_[k].allFinite()) return false;
   }
