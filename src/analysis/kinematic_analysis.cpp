@@ -312,7 +312,7 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   bounds_regular_ = std::min(bounds_regular_, kappa);
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
   errors_->Observe(s_);
-  if (MeasuresBounds(kappa)) errors_->Raise(*ws_, s_, kappa, diag->residual, extended_, diag->error_bound);
+  if (MeasuresBounds(kappa)) errors_->Raise(*ws_, s_, kappa, extended_, diag->error_bound);
 }
 
 // Redundancy that follows the motion (issue "Right at every order", item 1): the

@@ -86,6 +86,14 @@ bool RowErrorEstimator::PositionError(KinematicsWorkspace& ws, const SystemState
   return true;
 }
 
+// x_ = the order-k unknowns (r^(k), ω'^(k−1)) per body, ω' layout.
+void RowErrorEstimator::OrderUnknowns(const SystemState& s, int k) {
+  for (size_t b = 0; b < s.bodies.size(); ++b) {
+    x_.segment<3>(6 * b) = s.bodies[b].r[k];
+    x_.segment<3>(6 * b + 3) = s.bodies[b].w[k - 1];
+  }
+}
+
 // out = s moved by sign·h·delta_ in the pose and the derivative orders 1..upto, in
 // the ω' chart (as SensitivitySolver::PerturbedState does for a parameter).
 void RowErrorEstimator::Moved(const SystemState& s, int upto, double sign, SystemState* out) const {
@@ -115,10 +123,7 @@ void RowErrorEstimator::Propagate(KinematicsWorkspace& ws, const SystemState& s,
   double extent = ScaledNorm(delta_[0], col_scales_);
   for (int j = 1; j < k; ++j) extent = std::max(extent, ScaledNorm(delta_[j], col_scales_) / std::max(scale_[j], 1e-300));
   h_ = extent > 0 ? 1e-6 / extent : 1e-6;
-  for (size_t b = 0; b < s.bodies.size(); ++b) {
-    x_.segment<3>(6 * b) = s.bodies[b].r[k];
-    x_.segment<3>(6 * b + 3) = s.bodies[b].w[k - 1];
-  }
+  OrderUnknowns(s, k);
   for (int side = 0; side < 2; ++side) {
     SystemState& moved = side == 0 ? *plus_state_ : *minus_state_;
     Moved(s, k - 1, side == 0 ? 1.0 : -1.0, &moved);
@@ -136,10 +141,7 @@ void RowErrorEstimator::Propagate(KinematicsWorkspace& ws, const SystemState& s,
 // the round-off that made it), k = 1..order, before the chain moves jac_ off s.
 bool RowErrorEstimator::SolveErrors(KinematicsWorkspace& ws, const SystemState& s) {
   for (int k = 1; k <= order_; ++k) {
-    for (size_t b = 0; b < s.bodies.size(); ++b) {
-      x_.segment<3>(6 * b) = s.bodies[b].r[k];
-      x_.segment<3>(6 * b + 3) = s.bodies[b].w[k - 1];
-    }
+    OrderUnknowns(s, k);
     CalcRhs(sys_, s, k, Formulation::Omega, &full_);
     plus_.noalias() = jac_->matrix() * x_;
     for (size_t r = 0; r < rows_.size(); ++r) plus_[r] -= full_[rows_[r]];
@@ -148,8 +150,8 @@ bool RowErrorEstimator::SolveErrors(KinematicsWorkspace& ws, const SystemState& 
   return true;
 }
 
-bool RowErrorEstimator::Raise(KinematicsWorkspace& ws, const SystemState& s, double condition, double residual,
-                              bool extended, double* bound) {
+bool RowErrorEstimator::Raise(KinematicsWorkspace& ws, const SystemState& s, double condition, bool extended,
+                              double* bound) {
   double kappa = condition, y = 0;
   if (!PositionError(ws, s, &kappa, &y) || !SolveErrors(ws, s)) return false;
   if (extended) y = 0;  // the double residual of a rounded long-double pose is round-off

@@ -10,7 +10,7 @@
 //      identities of the parameter sensitivities (sensitivity.hpp) with the pose moved
 //      instead of a parameter, central differences at ±h;
 //   3. each order's own solve error Φ_q⁻¹(Φ_q q̂^(k) − RHS_k);
-// and states e_0 = max(2‖ε‖, κ·max(r, 4u)), e_k = 4‖δq^(k)‖/‖q^(k)‖_max + κ(e_0 + 8u),
+// and states e_0 = max(2‖ε‖, 4u·κ), e_k = 4‖δq^(k)‖/‖q^(k)‖_max + κ(e_0 + 8u),
 // ‖q^(k)‖_max the largest magnitude of order k seen along the run. Max-abs norms,
 // translations over the characteristic length. No allocation per row once the
 // active rows are known (buffers sized on the first row).
@@ -34,13 +34,13 @@ class RowErrorEstimator {
   /// At the solved, factorized row `s` (derivatives to `order`), raises bound[0..order]
   /// to the measured bounds. `extended`: the pose came from the long-double phase.
   /// Returns false (bounds untouched) when the factorization cannot solve.
-  bool Raise(KinematicsWorkspace& ws, const SystemState& s, double condition, double residual, bool extended,
-             double* bound);
+  bool Raise(KinematicsWorkspace& ws, const SystemState& s, double condition, bool extended, double* bound);
 
  private:
   bool PositionError(KinematicsWorkspace& ws, const SystemState& s, double* kappa, double* y_norm);
   bool SolveErrors(KinematicsWorkspace& ws, const SystemState& s);
   void Propagate(KinematicsWorkspace& ws, const SystemState& s, int k);
+  void OrderUnknowns(const SystemState& s, int k);
   void Moved(const SystemState& s, int upto, double sign, SystemState* out) const;
 
   const ConstraintSystem& sys_;
