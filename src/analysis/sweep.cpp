@@ -91,21 +91,91 @@ std::vector<std::string> KeysOf(const ParameterOverrides& v) {
 
 }  // namespace
 
+// The seeded samples of one shard, drawn in the order SampleVariants draws them (one
+// std::mt19937_64 stream through every variant of the sweep, the parameters in the
+// model's order) and kept only for the last kWindow of the shard's variants: the
+// threads ask in nearly ascending order, so a variant asked for is either ahead
+// (drawn on) or just behind (in the window). An older one restarts the stream.
+class SampleStream {
+ public:
+  struct Range {
+    std::string name;
+    double min, max;
+  };
+  SampleStream(std::vector<Range> ranged, std::vector<std::string> keys, unsigned long seed, int first,
+               int stride)
+      : ranged_(std::move(ranged)), keys_(std::move(keys)), seed_(seed), first_(first), stride_(stride),
+        window_(kWindow * keys_.size()) {
+    Restart();
+  }
+  ParameterOverrides Variant(size_t k) {
+    std::lock_guard<std::mutex> hold(lock_);
+    if (k + kWindow < next_) Restart();
+    while (next_ <= k) DrawShardVariant();
+    ParameterOverrides v;
+    const double* values = &window_[(k % kWindow) * keys_.size()];
+    for (size_t p = 0; p < keys_.size(); ++p) v.emplace_hint(v.end(), keys_[p], values[p]);
+    return v;
+  }
+
+ private:
+  static constexpr size_t kWindow = 1024;
+  void Restart() {
+    rng_.seed(seed_);
+    drawn_ = 0;
+    next_ = 0;
+  }
+  // Draws through the other shards' variants to this shard's next one, into the window.
+  void DrawShardVariant() {
+    const long long index = first_ + static_cast<long long>(next_) * stride_;
+    for (; drawn_ < index; ++drawn_)
+      for (size_t p = 0; p < ranged_.size(); ++p) unit_(rng_);
+    ParameterOverrides v;  // keyed as SampleVariants keys it, so the values sort alike
+    for (const Range& p : ranged_) v[p.name] = p.min + (p.max - p.min) * unit_(rng_);
+    ++drawn_;
+    double* values = &window_[(next_ % kWindow) * keys_.size()];
+    for (const auto& kv : v) *values++ = kv.second;
+    ++next_;
+  }
+  const std::vector<Range> ranged_;  // the model's parameters with min and max, in its order
+  const std::vector<std::string> keys_;
+  const unsigned long seed_;
+  const int first_, stride_;
+  std::vector<double> window_;
+  std::mt19937_64 rng_;
+  std::uniform_real_distribution<double> unit_{0.0, 1.0};
+  long long drawn_ = 0;  // whole-sweep variants drawn
+  size_t next_ = 0;      // the shard's next variant to draw
+  std::mutex lock_;
+};
+
 ParameterOverrides ShardVariants::Variant(size_t k) const {
+  if (samples_) return samples_->Variant(k);
+  if (!grid_.empty()) return GridVariant(grid_, Index(k));
   ParameterOverrides v;
-  for (size_t p = 0; p < parameters.size(); ++p) v.emplace_hint(v.end(), parameters[p], values[k * parameters.size() + p]);
+  for (size_t p = 0; p < parameters.size(); ++p)
+    v.emplace_hint(v.end(), parameters[p], listed_[k * parameters.size() + p]);
   return v;
 }
 
-void ShardVariants::Reserve(size_t count) {
-  indices.reserve(count);
-  values.reserve(count * parameters.size());
+void ShardVariants::Add(int index, const ParameterOverrides& variant) {
+  if (count_ == 0) first_ = index;
+  if (count_ == 1) stride_ = index - first_;
+  if (stride_ < 1 || index != Index(count_))
+    throw std::invalid_argument("ShardVariants::Add: variant " + std::to_string(index) +
+                                " does not continue the shard's even steps from " + std::to_string(first_));
+  for (const auto& kv : variant) listed_.push_back(kv.second);
+  ++count_;
 }
 
-void ShardVariants::Add(int index, const ParameterOverrides& variant) {
-  indices.push_back(index);
-  for (const auto& kv : variant) values.push_back(kv.second);
+namespace {
+
+// The count of variants with index ≡ shard−1 (mod shards) among `total`.
+size_t ShardCount(long long total, int shard, int shards) {
+  return total < shard ? 0 : static_cast<size_t>((total - shard) / shards + 1);
 }
+
+}  // namespace
 
 ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards) {
   ShardVariants out;
@@ -113,8 +183,10 @@ ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards
   for (const GridAxis& a : axes) total *= a.count;  // the caller bounds it (1e8)
   out.total = static_cast<int>(total);
   out.parameters = KeysOf(GridVariant(axes, 0));
-  out.Reserve(static_cast<size_t>((total - (shard - 1) + shards - 1) / shards));
-  for (long long i = shard - 1; i < total; i += shards) out.Add(static_cast<int>(i), GridVariant(axes, i));
+  out.grid_ = axes;
+  out.first_ = shard - 1;
+  out.stride_ = shards;
+  out.count_ = ShardCount(total, shard, shards);
   return out;
 }
 
@@ -128,16 +200,14 @@ ShardVariants SampleShard(const Model& model, int count, unsigned long seed, int
     return out;
   }
   out.total = count;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  ParameterOverrides v;
   for (const Parameter* p : ranged) out.parameters.push_back(p->name);
   std::sort(out.parameters.begin(), out.parameters.end());  // the overrides' key order
-  out.Reserve(static_cast<size_t>((count - (shard - 1) + shards - 1) / shards));
-  for (int i = 0; i < count; ++i) {
-    for (const Parameter* p : ranged) v[p->name] = *p->min + (*p->max - *p->min) * unit(rng);  // as SampleVariants
-    if (i % shards == shard - 1) out.Add(i, v);
-  }
+  out.first_ = shard - 1;
+  out.stride_ = shards;
+  out.count_ = ShardCount(count, shard, shards);
+  std::vector<SampleStream::Range> ranges;
+  for (const Parameter* p : ranged) ranges.push_back({p->name, *p->min, *p->max});
+  out.samples_ = std::make_shared<SampleStream>(std::move(ranges), out.parameters, seed, out.first_, out.stride_);
   return out;
 }
 
@@ -240,8 +310,7 @@ SweepResult RunSweep(const Model& model, const std::vector<ParameterOverrides>& 
   ShardVariants shard;
   shard.total = static_cast<int>(variants.size());
   if (!variants.empty()) shard.parameters = KeysOf(variants.front());
-  for (int i = 0; i < shard.total; ++i)
-    if (i % options.shards == options.shard - 1) shard.Add(i, variants[i]);
+  for (int i = options.shard - 1; i < shard.total; i += options.shards) shard.Add(i, variants[i]);
   return RunSweepShard(model, shard, options);
 }
 
@@ -254,15 +323,15 @@ SweepResult RunSweepShard(const Model& model, const ShardVariants& shard, const 
   std::string why;
   if (!options.request.IsValid(&why)) throw std::invalid_argument(why);
   result.columns = SweepColumns(model, options.request.order);
-  result.variants.resize(shard.indices.size());
-  std::vector<char> finished(shard.indices.size(), 0);
+  result.variants.resize(shard.size());
+  std::vector<char> finished(shard.size(), 0);
   std::mutex progress_lock;
   int done = 0;
-  ParallelFor(static_cast<int>(shard.indices.size()), options.threads, [&](int k, int) {
+  ParallelFor(static_cast<int>(shard.size()), options.threads, [&](int k, int) {
     VariantSummary v = RunVariant(model, shard.Variant(k), options);
     if (v.status == "interrupted") return;  // a summary of part of the motion: not reported
     result.variants[k] = std::move(v);
-    result.variants[k].index = shard.indices[k];
+    result.variants[k].index = shard.Index(k);
     finished[k] = 1;
     if (!options.progress) return;
     std::lock_guard<std::mutex> hold(progress_lock);

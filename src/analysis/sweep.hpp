@@ -10,6 +10,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <limits>
 #include <string>
 #include <vector>
@@ -35,22 +36,39 @@ std::vector<ParameterOverrides> GridVariants(const std::vector<GridAxis>& axes);
 /// Empty with `error` set when no parameter declares a range.
 std::vector<ParameterOverrides> SampleVariants(const Model& model, int count, unsigned long seed, std::string* error);
 
+class SampleStream;  // sweep.cpp: the seeded samples, drawn as they are asked for
+
 /// One shard's variants alone (index ≡ shard−1 mod shards), so that memory follows
-/// the shard's share, not the sweep's size.
-struct ShardVariants {
+/// the shard's share, not the sweep's size: a grid's or the samples' variants are made
+/// when asked for (no list: memory stays flat however many variants a dataset sweep
+/// has); only a list given by the caller (Add) is kept.
+class ShardVariants {
+ public:
   int total = 0;                         // variants in the whole sweep
   std::vector<std::string> parameters;   // the varied parameters (the overrides' keys, in their order)
-  std::vector<int> indices;              // ascending
-  // Per index, the parameters' values (indices.size() × parameters.size()): 8 bytes a
-  // value rather than a map per variant, so a dataset sweep of 10⁵ variants stays small.
-  std::vector<double> values;
-  size_t size() const { return indices.size(); }
-  /// Variant k (equal to GridVariants'/SampleVariants' entry of indices[k]).
+
+  size_t size() const { return count_; }
+  /// The sweep index of variant k: first + k·stride (the shard's variants are every
+  /// stride-th from first).
+  int Index(size_t k) const { return first_ + static_cast<int>(k) * stride_; }
+  int first() const { return first_; }
+  int stride() const { return stride_; }
+  /// Variant k (equal to GridVariants'/SampleVariants' entry of Index(k)). Safe to call
+  /// from several threads; cheapest in (nearly) ascending k, as ParallelFor asks.
   ParameterOverrides Variant(size_t k) const;
-  /// Room for `count` variants (set `parameters` first): no growth by doubling.
-  void Reserve(size_t count);
-  /// Appends variant `index` (its keys must be `parameters`).
+  /// Appends variant `index` of a caller's list (its keys must be `parameters`; the
+  /// indices must step evenly: throws std::invalid_argument otherwise).
   void Add(int index, const ParameterOverrides& variant);
+
+ private:
+  friend ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards);
+  friend ShardVariants SampleShard(const Model& model, int count, unsigned long seed, int shard, int shards,
+                                   std::string* error);
+  size_t count_ = 0;
+  int first_ = 0, stride_ = 1;
+  std::vector<double> listed_;           // Add's variants (size() × parameters.size())
+  std::vector<GridAxis> grid_;           // a grid's axes (made from the index)
+  std::shared_ptr<SampleStream> samples_;  // the seeded samples
 };
 /// The grid's variants of shard `shard`/`shards`, each made from its index.
 ShardVariants GridShard(const std::vector<GridAxis>& axes, int shard, int shards);

@@ -90,10 +90,10 @@ bool RunCurveSweep(const Model& model, const ShardVariants& shard, const CurveSe
   int done = 0;
   const InterruptPoll& interrupted = selection.request.interrupted;
   auto stop = [&] { return sink_failed || (interrupted && interrupted()); };
-  ParallelFor(static_cast<int>(shard.indices.size()), threads, [&](int k, int) {
+  ParallelFor(static_cast<int>(shard.size()), threads, [&](int k, int) {
     VariantCurves v = RunVariantCurves(model, shard.Variant(k), selection);
     if (v.status == "interrupted") return;  // part of the motion: not kept
-    v.index = shard.indices[k];
+    v.index = shard.Index(k);
     v.position = k;
     std::lock_guard<std::mutex> hold(lock);
     if (sink_failed) return;
@@ -101,7 +101,7 @@ bool RunCurveSweep(const Model& model, const ShardVariants& shard, const CurveSe
     ++done;
     if (progress) progress(done);
   }, stop);
-  return !sink_failed && done == static_cast<int>(shard.indices.size());
+  return !sink_failed && done == static_cast<int>(shard.size());
 }
 
 }  // namespace mechkin

@@ -52,6 +52,30 @@ class Hid {
 // HDF5's own error printing is off: failures are reported with the file and the step.
 void Quiet() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
+// Memory that does not grow with the variant count (issue 31: "memory stays flat"). Two
+// HDF5 defaults grow with a file of many chunks (one chunk a variant): the metadata
+// cache resizes itself up to 32 MB as the chunk index grows, and the free lists keep
+// every block HDF5 ever freed for reuse, unbounded. Both get fixed small limits here;
+// the index pages evicted from the cache are written and read again when needed.
+void BoundCaches(hid_t file_access) {
+  H5AC_cache_config_t config;
+  config.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  if (H5Pget_mdc_config(file_access, &config) >= 0) {
+    constexpr size_t kCacheBytes = 2 << 20;
+    config.set_initial_size = true;
+    config.initial_size = kCacheBytes;
+    config.max_size = kCacheBytes;
+    config.min_size = kCacheBytes / 2;
+    config.incr_mode = H5C_incr__off;
+    config.flash_incr_mode = H5C_flash_incr__off;
+    config.decr_mode = H5C_decr__off;
+    H5Pset_mdc_config(file_access, &config);
+  }
+  constexpr int kFreeListBytes = 1 << 20;  // per kind of free list, and per list
+  H5set_free_list_limits(kFreeListBytes, kFreeListBytes / 4, kFreeListBytes, kFreeListBytes / 4, kFreeListBytes,
+                         kFreeListBytes / 4);
+}
+
 Hid Space(const std::vector<hsize_t>& dims) {
   return Hid(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
 }
@@ -112,6 +136,18 @@ Hid Creation(const std::vector<hsize_t>& dims, const std::vector<hsize_t>& chunk
   Hid p(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   if (dims.front() > 0) H5Pset_chunk(p.get(), static_cast<int>(chunk.size()), chunk.data());
   H5Pset_fill_value(p.get(), type, fill);
+  return p;
+}
+
+// A dataset's chunk cache of `chunks` chunks of `chunk` (8-byte values at most): the
+// variants finish in nearly ascending order, so a few chunks hold the ones being
+// written; the default 1 MB a dataset would keep finished chunks of the small
+// per-variant datasets, growing with the variant count up to 5 MB.
+Hid ChunkCache(const std::vector<hsize_t>& chunk, size_t chunks) {
+  Hid p(H5Pcreate(H5P_DATASET_ACCESS), H5Pclose);
+  size_t bytes = 8;
+  for (hsize_t n : chunk) bytes *= static_cast<size_t>(n);
+  H5Pset_chunk_cache(p.get(), 521, bytes * chunks, 1.0);  // w0 = 1: evict fully written chunks first
   return p;
 }
 
@@ -209,9 +245,9 @@ DatasetShape ShapeOf(const ShardVariants& variants, const CurveSelection& select
   s.units = selection.units;
   s.rows = selection.rows;
   s.total = variants.total;
-  s.count = static_cast<int>(variants.indices.size());
-  s.first = s.count > 0 ? variants.indices.front() : 0;
-  s.stride = s.count > 1 ? variants.indices[1] - variants.indices[0] : 1;
+  s.count = static_cast<int>(variants.size());
+  s.first = variants.first();
+  s.stride = variants.stride();
   return s;
 }
 
@@ -224,6 +260,7 @@ bool DatasetWriter::Create(const std::string& path, const DatasetShape& shape, s
   h_->shape = shape;
   Hid fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_LATEST);
+  BoundCaches(fapl.get());
   h_->file = Hid(H5Fcreate(tmp_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
   bool ok = h_->file.ok();
   const hsize_t count = static_cast<hsize_t>(shape.count);
@@ -235,8 +272,9 @@ bool DatasetWriter::Create(const std::string& path, const DatasetShape& shape, s
     const Hid p = Creation(dims, chunk, which < 0 ? H5T_NATIVE_DOUBLE : kPerVariant[which].memory_type,
                            which < 0 ? &kNaN : FillOf(which));
     const Hid space = Space(dims);
+    const Hid access = ChunkCache(chunk, which < 0 ? 64 : 2);
     Hid d(H5Dcreate2(h_->file.get(), which < 0 ? "curves" : kPerVariant[which].name, type, space.get(), H5P_DEFAULT,
-                     p.get(), H5P_DEFAULT), H5Dclose);
+                     p.get(), access.get()), H5Dclose);
     ok = d.ok();
     (which < 0 ? h_->curves : h_->per_variant[which]) = std::move(d);
   }

@@ -31,7 +31,7 @@ struct DatasetShape {
   std::string source;         // the mechanism file
 };
 
-/// The shape of the file for a shard's variants (ShardVariants::indices must be first + k·stride).
+/// The shape of the file for a shard's variants (its variants first + k·stride).
 DatasetShape ShapeOf(const ShardVariants& variants, const CurveSelection& selection);
 
 class DatasetWriter {

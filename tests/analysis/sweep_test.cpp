@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <stdexcept>
 
 #include "analysis/sweep.hpp"
 #include "io/sweep_writer.hpp"
@@ -89,6 +90,38 @@ TEST(Sweep, FourShardsMergeIntoTheUnshardedResultExactly) {
   files.erase(files.begin() + 1);
   EXPECT_FALSE(MergeSweepFiles(files, &merged, &why));
   EXPECT_NE(why.find("missing shards: 2/4"), std::string::npos) << why;
+}
+
+// Issue 31, flat memory: a shard's samples and grid variants are made as they are
+// asked for, not listed. They must equal the listed ones (SampleVariants /
+// GridVariants at the shard's indices) in any order of asking: ascending as the
+// threads ask, descending and far behind (the stream restarts), and repeated.
+TEST(Sweep, ShardVariantsMadeOnDemandEqualTheListedOnes) {
+  const Model model = FourBar();
+  std::string why;
+  const int count = 3000, shard = 2, shards = 3;
+  const auto listed = SampleVariants(model, count, 7, &why);
+  const ShardVariants samples = SampleShard(model, count, 7, shard, shards, &why);
+  ASSERT_EQ(samples.size(), 1000u) << why;
+  std::vector<size_t> order;
+  for (size_t k = 0; k < samples.size(); ++k) order.push_back(k);
+  for (size_t k = samples.size(); k-- > 0;) order.push_back(k);
+  order.insert(order.end(), {5, 999, 0, 5, 500, 499, 998});
+  for (size_t k : order) {
+    ASSERT_EQ(samples.Index(k), shard - 1 + static_cast<int>(k) * shards);
+    EXPECT_EQ(samples.Variant(k), listed[samples.Index(k)]) << "sample " << k;
+  }
+  const std::vector<GridAxis> axes = {{"a", 30, 50, 7}, {"b", 100, 140, 11}};
+  const auto grid_listed = GridVariants(axes);
+  const ShardVariants grid = GridShard(axes, 3, 4);
+  ASSERT_EQ(grid.size(), 19u);  // indices 2, 6, ..., 74 of 77
+  for (size_t k = 0; k < grid.size(); ++k) EXPECT_EQ(grid.Variant(k), grid_listed[grid.Index(k)]) << "grid " << k;
+  ShardVariants added;
+  added.parameters = {"a"};
+  added.Add(4, {{"a", 1.0}});
+  added.Add(7, {{"a", 2.0}});
+  EXPECT_THROW(added.Add(9, {{"a", 3.0}}), std::invalid_argument);  // not 4 + 2·3
+  EXPECT_EQ(added.Variant(1).at("a"), 2.0);
 }
 
 // Issue 23 item 9, the sweep: the crank = rod slider-crank (L = 19, 20, 21 mm, no

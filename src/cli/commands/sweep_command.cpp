@@ -143,8 +143,8 @@ int RunSweepCommand(const SweepCommandOptions& o, std::ostream& out, std::ostrea
   // Progress on a terminal's stderr, not over a summary written to that terminal.
   const bool summary_on_terminal = (o.output.empty() || o.output == "-") && &out == &std::cout && ::isatty(STDOUT_FILENO);
   ProgressLine progress(&err == &std::cerr && ::isatty(STDERR_FILENO) && !summary_on_terminal &&
-                            variants.indices.size() > 1,
-                        variants.indices.size(), "variants", err);
+                            variants.size() > 1,
+                        variants.size(), "variants", err);
   options.progress = [&](int done) { progress.Update(done); };
   SweepResult result = RunSweepShard(*model, variants, options);
   progress.Finish();

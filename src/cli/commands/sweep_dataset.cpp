@@ -79,8 +79,8 @@ int RunDatasetSweep(const SweepCommandOptions& o, const Model& model, const Shar
     err << "mechkin sweep: " << why << "\n";
     return 1;
   }
-  ProgressLine progress(&err == &std::cerr && ::isatty(STDERR_FILENO) && variants.indices.size() > 1,
-                        variants.indices.size(), "variants", err);
+  ProgressLine progress(&err == &std::cerr && ::isatty(STDERR_FILENO) && variants.size() > 1,
+                        variants.size(), "variants", err);
   std::map<std::string, int> statuses;
   const auto start = std::chrono::steady_clock::now();
   const bool whole = RunCurveSweep(model, variants, selection, o.threads, [&](VariantCurves&& v) {
@@ -96,7 +96,7 @@ int RunDatasetSweep(const SweepCommandOptions& o, const Model& model, const Shar
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   PrintDatasetSummary(writer.written(), seconds, ThreadCount(o.threads), path, statuses, err);
   if (interrupted) err << "mechkin sweep: interrupted; the dataset is partial (" << writer.written() << " of "
-                       << variants.indices.size() << " variants)\n";
+                       << variants.size() << " variants)\n";
   return interrupted ? kInterruptedExit : 0;
 }
 
