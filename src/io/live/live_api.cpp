@@ -74,7 +74,7 @@ void KeepMotion(State& s, const Motion& m) {
   s.cols = m.cols();
   s.table = m.values();
   nlohmann::json names = nlohmann::json::array();
-  for (const ColumnDescriptor& c : m.columns()) names.push_back(c.Header());
+  for (const ColumnDescriptor& c : m.columns()) names.push_back({c.name, c.Header()});
   s.columns = names.dump();
   s.status = nlohmann::json{{"complete", m.complete}, {"message", m.stop.message}}.dump();
 }
@@ -136,7 +136,7 @@ const double* mk_live_run(int steps, int order) {
 
 int mk_live_rows() { return Live().rows; }
 int mk_live_cols() { return Live().cols; }
-/// JSON array of the last table's column headers ("crank.x [mm]").
+/// JSON array of the last table's columns: [name, header] ("crank.x", "crank.x [mm]").
 const char* mk_live_columns() { return Live().columns.c_str(); }
 /// JSON: {"complete": bool, "message": the stop's explanation}.
 const char* mk_live_status() { return Live().status.c_str(); }
