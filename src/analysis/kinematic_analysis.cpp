@@ -113,6 +113,12 @@ constexpr int kMaxReselectColumns = 1200;  // 200 bodies: the dense QR of the se
 // Rows whose condition estimate reaches this, with 1/κ heading for zero, have the
 // step before them examined for a singular position (bundled mechanisms stay below 40).
 constexpr double kExamineCondition = 50;
+// A position located that many steps ahead of the row examined is kept (pending)
+// until a row passes it: the one-step condition estimate rises unevenly, and the
+// rows nearest the position may be the ones whose examination cannot classify it
+// (the N-four-bar, N = 4, 360 steps: located 4 steps ahead, missed from the rows
+// beside it).
+constexpr double kLookAheadSteps = 8;
 // Rows whose condition estimate reaches both have their error bounds measured
 // (row_error_estimate.hpp) instead of taken from κ alone: there a derivative's error
 // grows faster than the a priori bound's powers of κ (bundled mechanisms: a few rows
@@ -173,7 +179,8 @@ class Stepper {
   bool StopAtLimitOrSingularity(Outcome out, double t, double bad_t, AnalysisReport* rep);
   enum class Verdict { Undecided, Passed, Stop };
   Verdict ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag, AnalysisReport* rep);
-  bool StopAtConditionMinimum(double t, double h, const StepDiagnostics& diag, AnalysisReport* rep);
+  Verdict PassOn(double t, double h, StepDiagnostics* diag, double* bad_t, Outcome* out);
+  bool StopAtConditionMinimum(double t, double h, AnalysisReport* rep);
   bool ActOnPending(double h, AnalysisReport* rep);
   SingularityClassifier& Classifier();
   void StopAtBifurcation(const SingularClassification& c, AnalysisReport* rep);
@@ -202,6 +209,10 @@ class Stepper {
   std::unique_ptr<SingularityClassifier> classifier_;
   double passage_t_ = -std::numeric_limits<double>::infinity();
   double earlier_condition_[2] = {0, 0};
+  // This row's sharper κ (FinishDiagnostics): the watch for condition minima reads it,
+  // not the one-step estimate, which lags by up to 5× three degrees from the N-four-bar's
+  // bifurcation and hid the rise there.
+  double sharper_condition_ = 0;
   std::optional<std::pair<SingularClassification, SingularPosition>> pending_;  // located ahead of the row
   double step_sign_ = 0;
   bool step_have_sign_ = false;
@@ -309,6 +320,7 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   // Which rows take measured bounds is decided on the sharper κ (two more
   // iterations): the one-step estimate lags where a pivot collapses (constraints.md §8).
   const double kappa = std::max(diag->condition, ws_->factorization().SharperConditionEstimate(kSharperSteps));
+  sharper_condition_ = kappa;
   bounds_regular_ = std::min(bounds_regular_, kappa);
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
   errors_->Observe(s_);
@@ -408,6 +420,11 @@ void Stepper::StopAtBifurcation(const SingularClassification& c, AnalysisReport*
 Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag,
                                           AnalysisReport* rep) {
   if (!options_.branch_guard || ws_->block_solver() || !(*bad_t > good_.t)) return Verdict::Undecided;
+  // Located ahead from well-determined rows: kept, not classified again from the
+  // step's last good pose — that one lies so close to the position that its rates
+  // are amplified by 1/σ_min and its prediction misses the position (N-four-bar, N = 3).
+  if (pending_ && pending_->first.t > good_.t - 1e-9 * h && pending_->first.t < *bad_t + 1e-9 * h)
+    return ActOnPending(h, rep) ? Verdict::Stop : PassOn(t, h, diag, bad_t, out);
   const SingularClassification c = Classifier().Classify(good_, *bad_t, h);
   if (!(c.t > good_.t - h && c.t < *bad_t + h)) return Verdict::Undecided;
   if (c.kind == SingularKind::Bifurcation) {
@@ -415,9 +432,14 @@ Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Out
     return Verdict::Stop;
   }
   if (c.kind != SingularKind::UniquePassage || std::abs(c.t - passage_t_) < 1e-6 * h) return Verdict::Undecided;
-  if (pending_ && std::abs(pending_->first.t - c.t) < 1e-6 * h) pending_.reset();  // the same one, noted here
+  pending_.reset();  // one farther ahead is located again when the rows reach it
   passage_t_ = c.t;
   rep->notes.push_back(PassageNote(model_, c));
+  return PassOn(t, h, diag, bad_t, out);
+}
+
+// Past a unique passage: the step again, its sign change expected.
+Stepper::Verdict Stepper::PassOn(double t, double h, StepDiagnostics* diag, double* bad_t, Outcome* out) {
   s_ = prev_;
   prev_sign_ = step_sign_;
   have_sign_ = step_have_sign_;
@@ -431,18 +453,18 @@ Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Out
 // before, reaches zero by the middle of the next step and κ is high, the step
 // (prev_, t] is classified before its row is delivered (docs/singularities.md §1).
 // A position located ahead is kept until the row that passes it.
-bool Stepper::StopAtConditionMinimum(double t, double h, const StepDiagnostics& diag, AnalysisReport* rep) {
+bool Stepper::StopAtConditionMinimum(double t, double h, AnalysisReport* rep) {
   const double k2 = earlier_condition_[0], k1 = earlier_condition_[1];
   earlier_condition_[0] = k1;
-  earlier_condition_[1] = diag.condition;
+  earlier_condition_[1] = sharper_condition_;
   if (pending_ && pending_->first.t <= t + 1e-9 * h) return ActOnPending(h, rep);
   if (pending_ || !options_.branch_guard || !(k2 > 0) || !(k1 > k2) || ws_->block_solver()) return false;
-  if (!(std::max(k1, diag.condition) >= kExamineCondition) || CrossesPassage(t, h)) return false;
+  if (!(std::max(k1, sharper_condition_) >= kExamineCondition) || CrossesPassage(t, h)) return false;
   const double t_zero = prev_.t + h * (1 / k1) / (1 / k2 - 1 / k1);
   if (!(t_zero < t + 0.5 * h)) return false;
   const SingularClassification c = Classifier().Classify(prev_, t, h);
   if (c.kind != SingularKind::UniquePassage && c.kind != SingularKind::Bifurcation) return false;
-  if (std::abs(c.t - passage_t_) < 1e-6 * h || !(c.t > prev_.t - 2 * h && c.t < t + 2 * h)) return false;
+  if (std::abs(c.t - passage_t_) < 1e-6 * h || !(c.t > prev_.t - 2 * h && c.t < t + kLookAheadSteps * h)) return false;
   pending_.emplace(c, DescribeSingularPosition(ws_->system(), Classifier().active(), Classifier().pose(), c));
   return c.t <= t + 1e-9 * h && ActOnPending(h, rep);
 }
@@ -494,7 +516,7 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
     }
     FinishDiagnostics(&diag);
     ReselectAndResolve(&diag, rep);
-    if (StopAtConditionMinimum(t, h, diag, rep)) return;
+    if (StopAtConditionMinimum(t, h, rep)) return;
     const StepContext context{*ws_, prev_, step, std::max(predictor_, 1), t0};
     for (auto& o : observers_)
       if (!o->Observe(context, s_, &diag, rep)) return;

@@ -12,6 +12,8 @@ namespace mechkin {
 namespace {
 
 constexpr int kDenseColumns = 1200;  // 200 bodies: the dense SVDs
+// The fit's sample spacing δ, as a fraction of the step (Locate, ClassifyAt).
+constexpr double kFitSpacing = 0.005;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 Eigen::MatrixXd ActiveScaledJacobian(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& rows) {
@@ -101,7 +103,7 @@ bool SingularityClassifier::Probe(double t, const Sample** out) {
   const Sample* from = &samples_[0];
   for (const Sample& s : samples_) {
     if (s.s.t == t) { *out = &s; return true; }
-    if (s.sigma[0] >= 1e-4 * s.sigma[s.sigma.size() - 1] && std::abs(s.s.t - t) < std::abs(from->s.t - t)) from = &s;
+    if (WellDetermined(s) && std::abs(s.s.t - t) < std::abs(from->s.t - t)) from = &s;
   }
   Sample next{from->s, Eigen::VectorXd()};
   PredictPose(t - from->s.t, 3, &next.s);
@@ -158,7 +160,7 @@ double SingularityClassifier::FitZero(double center, double delta, int corank, b
 // other branches pass through it); they are skipped — the fit needs none of them.
 double SingularityClassifier::Locate(double ta, double tb, double step, int* corank) {
   constexpr int kScan = 8;
-  const double delta = 0.005 * step;
+  const double delta = kFitSpacing * step;
   double best_t = ta, best = samples_[0].sigma[0];
   for (int m = 1; m <= kScan; ++m) {
     const Sample* s = nullptr;
@@ -209,7 +211,7 @@ SingularClassification SingularityClassifier::Classify(const SystemState& base, 
   if (!std::isfinite(t)) return out;
   out.t = t;
   out.corank = corank;
-  out.kind = ClassifyAt(t, corank, &out.branches, &out.branches_exact);
+  out.kind = ClassifyAt(t, kFitSpacing * step, corank, &out.branches, &out.branches_exact);
   for (const Jet& j : pose_.driver_values) out.driver_values.push_back(j.c[0]);
   return out;
 }
@@ -217,10 +219,17 @@ SingularClassification SingularityClassifier::Classify(const SystemState& base, 
 // At the located t: the pose (Taylor prediction from the nearest sample, well inside
 // its accuracy), the null spaces U0, V0 of the scaled Φ_q, the fold test U0ᵀν ≠ 0 and
 // the second-order tangent cone U0ᵀγ(w + ρV0α) = 0 (docs/singularities.md §2–§3).
-SingularKind SingularityClassifier::ClassifyAt(double t, int corank, int* branches, bool* exact) {
+SingularKind SingularityClassifier::ClassifyAt(double t, double delta, int corank, int* branches, bool* exact) {
   const ConstraintSystem& sys = ws_.system();
+  // From the nearest well-determined sample at least δ/2 away (the fit's own, at ±δ,
+  // ±2δ): one closer to the position may have converged to another assembly or be
+  // fixed only to √(residual) along the null space (Newton stalls there) — the N-four-bar,
+  // N = 2, had one 1.4e-11 s from t* with σ_min 0.009 — and the predicted pose would be
+  // off the position by as much.
   const Sample* from = &samples_[0];
-  for (const Sample& s : samples_) if (std::abs(s.s.t - t) < std::abs(from->s.t - t)) from = &s;
+  for (const Sample& s : samples_)
+    if (WellDetermined(s) && std::abs(s.s.t - t) >= 0.5 * delta && std::abs(s.s.t - t) < std::abs(from->s.t - t))
+      from = &s;
   pose_ = from->s;
   PredictPose(t - from->s.t, 3, &pose_);
   EvalDriverFunctions(sys.model(), t, &pose_);

@@ -60,11 +60,15 @@ class SingularityClassifier {
     SystemState s;
     Eigen::VectorXd sigma;  // singular values of the scaled Φ_q, ascending
   };
+  /// Its pose and derivatives are meaningful: σ_min ≥ 1e-4 σ_max (closer to the
+  /// singular position the velocities are amplified by 1/σ_min and the pose is fixed
+  /// only to √(residual) along the null space).
+  static bool WellDetermined(const Sample& s) { return s.sigma[0] >= 1e-4 * s.sigma[s.sigma.size() - 1]; }
   bool Probe(double t, const Sample** out);
   double Locate(double ta, double tb, double step, int* corank);
   double FitZero(double center, double delta, int corank, bool* ok);
   int CountVanishing(double center, double delta, bool* ok);
-  SingularKind ClassifyAt(double t, int corank, int* branches, bool* exact);
+  SingularKind ClassifyAt(double t, double delta, int corank, int* branches, bool* exact);
   Eigen::VectorXd SingularValues(const SystemState& s) const;
 
   KinematicsWorkspace ws_;
