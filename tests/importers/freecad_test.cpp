@@ -17,23 +17,6 @@ using importers::ForeignFormat;
 const double kC[3] = {0.13388096599604965, 0.07247123666099901, 0};
 const double kTracer[3] = {0.0769404829980248, 0.0735561264061878, 0};
 
-// An .FCStd archive holding `document` as its Document.xml (and a GuiDocument.xml).
-std::string Fcstd(const std::string& name, const std::string& document) {
-  const std::string path = TempFile(name, "");
-  std::remove(path.c_str());
-  int code = 0;
-  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &code);
-  EXPECT_NE(z, nullptr);
-  static std::vector<std::string> keep;  // the buffers live until zip_close
-  keep.push_back(document);
-  keep.push_back("<?xml version='1.0'?><Document/>");
-  zip_file_add(z, "Document.xml", zip_source_buffer(z, keep[keep.size() - 2].data(), keep[keep.size() - 2].size(), 0),
-               ZIP_FL_OVERWRITE);
-  zip_file_add(z, "GuiDocument.xml", zip_source_buffer(z, keep.back().data(), keep.back().size(), 0), ZIP_FL_OVERWRITE);
-  EXPECT_EQ(zip_close(z), 0);
-  return path;
-}
-
 std::string FourBarDocument() { return ReadText(Source("tests/data/import/four-bar-Document.xml")); }
 
 TEST(FreeCadImport, FourBarChecksAndRunsLikeTheNativeFile) {
