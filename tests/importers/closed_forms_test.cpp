@@ -50,10 +50,8 @@ P3 Piston(double theta) {
 }
 
 TEST(ClosedFormImport, OffsetSliderCrankPistonInEveryFormat) {
-  for (const std::string& f : {Source("mechanisms/imported/offset-slider-crank.urdf")}) (void)f;
-  std::vector<std::string> files = Files("offset-slider-crank");
-  files[0] = Source("mechanisms/imported/offset-slider-crank.urdf");  // written by hand: a second parent
-  for (const std::string& f : files) {
+  // Its URDF (Files()[0]) is written by hand: the loop by a second parent.
+  for (const std::string& f : Files("offset-slider-crank")) {
     const auto report = CheckReport(f);
     EXPECT_EQ(report["mobility"]["mobility"], 1) << f;
     // R R R P in 3-D: 3 of the planar loop's 6 equations repeat; MJCF closes the loop
@@ -107,7 +105,7 @@ TEST(ClosedFormImport, JansenLegJointsAndFootInEveryFormat) {
     // Three independent planar loops of revolutes: 3 redundant equations each; MJCF's
     // spherical <connect> closures leave one each.
     EXPECT_EQ(report["mobility"]["redundant"], IsMjcf(f) ? 3 : 9) << f;
-    EXPECT_EQ(report["mobility"]["idle"], 0) << f;
+    EXPECT_EQ(report["mobility"]["idle"].size(), 0u) << f;
     const Table t = RunTable(f + " --drive O=2*pi*t --span 0:1:36 --tol 1e-14");
     ASSERT_EQ(t.at("t").size(), 37u) << f;
     double worst = 0;
@@ -162,14 +160,14 @@ P3 DeltaAt(double s) {
 TEST(ClosedFormImport, DeltaPlatformInEveryFormat) {
   const P3 p0 = DeltaPlatform(kWritten);
   const std::string drives =
-      " --drive shoulder_1=0.2*sin(2*pi*t) --drive shoulder_2=-0.15*sin(2*pi*t) --drive shoulder_3=0.1*sin(4*pi*t)";
+      " --drive 'shoulder_1=0.2*sin(2*pi*t)' --drive 'shoulder_2=-0.15*sin(2*pi*t)' --drive 'shoulder_3=0.1*sin(4*pi*t)'";
   for (const std::string& f : Files("delta")) {
     const auto report = CheckReport(f);
     // Three arms; each forearm rod universal–spherical (no spin of its own), the
     // parallelograms keep the platform's orientation with six independent distances.
     EXPECT_EQ(report["mobility"]["mobility"], 3) << f << report.dump();
     EXPECT_EQ(report["mobility"]["redundant"], 0) << f;
-    EXPECT_EQ(report["mobility"]["idle"], 0) << f;
+    EXPECT_EQ(report["mobility"]["idle"].size(), 0u) << f;
     const Table t = RunTable(f + drives + " --span 0:1:24 --tol 1e-14");
     ASSERT_EQ(t.at("t").size(), 25u) << f;
     const double err = PathError(t, "platform", p0, DeltaAt);
@@ -192,13 +190,9 @@ TEST(ClosedFormImport, DeltaWithSphericalRodEndsHasSixIdleSpins) {
   const auto report = CheckReport(Source("tests/data/import/delta-ss.xml"));
   EXPECT_EQ(report["mobility"]["mobility"], 9) << report.dump();
   EXPECT_EQ(report["mobility"]["redundant"], 0);
-  EXPECT_EQ(report["mobility"]["idle"], 6);
-}
-
-// The example files are the generator's output (tools/imported_examples.py --check).
-TEST(ClosedFormImport, ExampleFilesMatchTheirGenerator) {
-  const auto r = mechkin_test::RunShell("/usr/bin/python3 " + Source("tools/imported_examples.py") + " --check");
-  EXPECT_EQ(r.code, 0) << r.out;
+  ASSERT_EQ(report["mobility"]["idle"].size(), 6u);
+  for (const auto& idle : report["mobility"]["idle"])
+    EXPECT_EQ(idle["bodies"].get<std::string>().rfind("rod_", 0), 0u) << idle.dump();
 }
 
 }  // namespace closed_forms_test
