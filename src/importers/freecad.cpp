@@ -63,9 +63,11 @@ const FcJoint kFcJoints[] = {
     {"Cylindrical", true, Kind::Cylindrical, ""},
     {"Slider", true, Kind::Prismatic, ""},
     {"Ball", true, Kind::Spherical, ""},
-    {"Distance", false, Kind::Fixed, "a distance between two vertices is a distance link; other elements need "
-                                     "point-plane or plane-plane distance constraints, which the format lacks"},
-    {"Parallel", false, Kind::Fixed, "a constraint keeping two axes parallel (two dot-1 equations), not a joint type yet"},
+    {"Distance", false, Kind::Fixed,
+     "a distance between two vertices is a distance link; other elements need "
+     "point-plane or plane-plane distance constraints, which the format lacks"},
+    {"Parallel", false, Kind::Fixed,
+     "a constraint keeping two axes parallel (two dot-1 equations), not a joint type yet"},
     {"Perpendicular", false, Kind::Fixed, "a constraint keeping two axes perpendicular (one dot-1 equation)"},
     {"Angle", false, Kind::Fixed, "a constraint fixing the angle between two axes (one dot-1 equation)"},
     {"RackPinion", false, Kind::Fixed, "the revolute and prismatic joints it couples: write a rack_pinion coupler"},
@@ -148,8 +150,11 @@ const FcJoint* FcReader::JointTypeOf(const std::string& object) {
   if (names.empty())
     for (const FcJoint& t : kFcJoints) names.push_back(t.name);
   if (k < 0 || k >= static_cast<int>(names.size()))
-    return g_->Error(index, "JointType " + std::to_string(k) + " is not in its list of " + std::to_string(names.size()) +
-                                " joint types", "re-save the file"), nullptr;
+    return g_->Error(index,
+                     "JointType " + std::to_string(k) + " is not in its list of " + std::to_string(names.size()) +
+                         " joint types",
+                     "re-save the file"),
+           nullptr;
   for (const FcJoint& t : kFcJoints)
     if (names[k] == t.name) return &t;
   g_->Error(index, "JointType '" + names[k] + "' is not one of FreeCAD 1.x's joint types",
@@ -218,7 +223,8 @@ bool FcReader::Side(const std::string& joint, int k, std::string* part, Pose* fr
   }
   if (part->empty())
     return g_->Error(ref, "Reference" + n + " names no part ('" + root + "." + (text ? text : "") + "')",
-                     "attach the joint to a part of the assembly"), false;
+                     "attach the joint to a part of the assembly"),
+           false;
   Pose jcs;
   if (!PlacementOf(Prop(joint, ("Placement" + n).c_str()), &jcs))
     return g_->Error(place, "the joint has no Placement" + n, "re-create the joint in FreeCAD"), false;
@@ -236,10 +242,12 @@ void FcReader::ReadJoint(const std::string& object) {
   if (BoolProp(object, "Suppressed", false))
     return g_->Warn(e, "suppressed " + std::string(t.name) + " joint '" + NameOf(object) + "': not imported");
   if (!BoolProp(object, "Activated", true))
-    return g_->Warn(e, std::string(t.name) + " joint '" + NameOf(object) + "' is not activated (Activated=false): not imported",
-                    "activate it in FreeCAD to import it");
+    return g_->Warn(
+        e, std::string(t.name) + " joint '" + NameOf(object) + "' is not activated (Activated=false): not imported",
+        "activate it in FreeCAD to import it");
   if (!t.supported)
-    return g_->Error(e, std::string("FreeCAD's ") + t.name + " joint is not supported", std::string("it would need ") + t.needs);
+    return g_->Error(e, std::string("FreeCAD's ") + t.name + " joint is not supported",
+                     std::string("it would need ") + t.needs);
   Joint j;
   j.name = NameOf(object), j.kind = t.kind, j.place = g_->PlaceOf(e);
   if (!Side(object, 1, &j.parent, &j.in_parent) || !Side(object, 2, &j.child, &j.in_child)) return;
@@ -249,8 +257,9 @@ void FcReader::ReadJoint(const std::string& object) {
   const Vec3 z2 = g_->FindLink(j.child)->world.R * j.in_child.R.col(2);
   if (j.kind != Kind::Spherical && j.kind != Kind::Fixed && z1.dot(z2) < 0) {
     j.in_child.R = j.in_child.R * AxisAngle(Vec3::UnitX(), M_PI);
-    g_->Warn(e, "the joint's two frames have opposite z axes as saved: the second is turned over (a half turn "
-                "about its x) so that both share the axis");
+    g_->Warn(e,
+             "the joint's two frames have opposite z axes as saved: the second is turned over (a half turn "
+             "about its x) so that both share the axis");
   }
   j.axis = Vec3::UnitZ();
   j.axis2 = Vec3::UnitX();
@@ -270,7 +279,8 @@ void FcReader::Read(const XMLElement* document) {
     if (!o->Attribute("name")) continue;
     objects_[o->Attribute("name")] = o;
     const XMLElement* ps = o->FirstChildElement("Properties");
-    for (const XMLElement* p = ps ? ps->FirstChildElement("Property") : nullptr; p; p = p->NextSiblingElement("Property"))
+    for (const XMLElement* p = ps ? ps->FirstChildElement("Property") : nullptr; p;
+         p = p->NextSiblingElement("Property"))
       if (p->Attribute("name")) props_[o->Attribute("name")][p->Attribute("name")] = p;
   }
   g_->AddLink(Link{"ground", Pose{}, std::nullopt, Place{}, true}, nullptr);
@@ -289,7 +299,8 @@ void FcReader::Read(const XMLElement* document) {
   }
   for (const std::string& o : order_)
     if (objects_.count(o) && Prop(o, "JointType")) ReadJoint(o);
-  if (g_->joints.empty()) g_->Error(document, "the document has no assembly joints", "give a FreeCAD 1.x Assembly file");
+  if (g_->joints.empty())
+    g_->Error(document, "the document has no assembly joints", "give a FreeCAD 1.x Assembly file");
 }
 
 }  // namespace

@@ -97,8 +97,8 @@ TEST(ClosedFormImport, JansenLegJointsAndFootInEveryFormat) {
   const Jansen p0 = JansenAt(1.0);
   // Each joint point on a body it moves with.
   const std::vector<std::tuple<const char*, const char*, P3 Jansen::*>> points = {
-      {"X", "crank", &Jansen::X},   {"W", "triangle_bde", &Jansen::W}, {"U", "triangle_bde", &Jansen::U},
-      {"V", "rod_c", &Jansen::V},   {"T", "rod_f", &Jansen::T},        {"S", "triangle_ghi", &Jansen::S}};
+      {"X", "crank", &Jansen::X}, {"W", "triangle_bde", &Jansen::W}, {"U", "triangle_bde", &Jansen::U},
+      {"V", "rod_c", &Jansen::V}, {"T", "rod_f", &Jansen::T},        {"S", "triangle_ghi", &Jansen::S}};
   for (const std::string& f : Files("jansen-leg")) {
     const auto report = CheckReport(f);
     EXPECT_EQ(report["mobility"]["mobility"], 1) << f;
@@ -110,7 +110,8 @@ TEST(ClosedFormImport, JansenLegJointsAndFootInEveryFormat) {
     ASSERT_EQ(t.at("t").size(), 37u) << f;
     double worst = 0;
     for (const auto& [name, body, member] : points) {
-      const double err = PathError(t, body, p0.*member, [m = member](double s) { return JansenAt(1.0 + 2 * M_PI * s).*m; });
+      const double err =
+          PathError(t, body, p0.*member, [m = member](double s) { return JansenAt(1.0 + 2 * M_PI * s).*m; });
       EXPECT_LT(err, 1e-12) << f << ": " << name;
       worst = std::max(worst, err);
     }
@@ -160,7 +161,8 @@ P3 DeltaAt(double s) {
 TEST(ClosedFormImport, DeltaPlatformInEveryFormat) {
   const P3 p0 = DeltaPlatform(kWritten);
   const std::string drives =
-      " --drive 'shoulder_1=0.2*sin(2*pi*t)' --drive 'shoulder_2=-0.15*sin(2*pi*t)' --drive 'shoulder_3=0.1*sin(4*pi*t)'";
+      " --drive 'shoulder_1=0.2*sin(2*pi*t)' --drive 'shoulder_2=-0.15*sin(2*pi*t)' --drive "
+      "'shoulder_3=0.1*sin(4*pi*t)'";
   for (const std::string& f : Files("delta")) {
     const auto report = CheckReport(f);
     // Three arms; each forearm rod universal–spherical (no spin of its own), the

@@ -28,7 +28,9 @@ TEST(FreeCadImport, FourBarChecksAndRunsLikeTheNativeFile) {
   ASSERT_EQ(r.spec->joints.size(), 4u);
   EXPECT_EQ(*r.spec->joints[2].name, "C");
   bool flipped = false;
-  for (const auto& w : r.warnings) flipped |= w.ToString().find("<Object name=\"Joint002\">: the joint's two frames have opposite z") != std::string::npos;
+  for (const auto& w : r.warnings)
+    flipped |=
+        w.ToString().find("<Object name=\"Joint002\">: the joint's two frames have opposite z") != std::string::npos;
   EXPECT_TRUE(flipped);
   const auto native = CheckReport(Source("mechanisms/planar-four-bar.json"));
   const auto imported = CheckReport(path);
@@ -61,15 +63,16 @@ int LineOf(const std::string& text, const std::string& what) {
 TEST(FreeCadImport, UnsupportedJointKindsSayWhatTheyNeed) {
   const std::string doc = FourBarDocument();
   const int line = LineOf(doc, "<Object name=\"Joint003\">");
-  const std::pair<int, const char*> kinds[] = {{5, "Distance joint is not supported"},
-                                               {6, "Parallel joint is not supported"},
-                                               {7, "Perpendicular joint is not supported"},
-                                               {8, "Angle joint is not supported"},
-                                               {9, "RackPinion joint is not supported — it would need the revolute and prismatic"},
-                                               {10, "Screw joint is not supported"},
-                                               {11, "Gears joint is not supported — it would need the two revolute joints it couples"},
-                                               {12, "Belt joint is not supported"},
-                                               {13, "JointType 13 is not in its list of 13 joint types"}};
+  const std::pair<int, const char*> kinds[] = {
+      {5, "Distance joint is not supported"},
+      {6, "Parallel joint is not supported"},
+      {7, "Perpendicular joint is not supported"},
+      {8, "Angle joint is not supported"},
+      {9, "RackPinion joint is not supported — it would need the revolute and prismatic"},
+      {10, "Screw joint is not supported"},
+      {11, "Gears joint is not supported — it would need the two revolute joints it couples"},
+      {12, "Belt joint is not supported"},
+      {13, "JointType 13 is not in its list of 13 joint types"}};
   for (const auto& [index, reason] : kinds) {
     const auto r = Import(WithJointType(index), ForeignFormat::FreeCad, "a.FCStd:Document.xml");
     EXPECT_FALSE(r.ok()) << index;
@@ -100,32 +103,36 @@ double CouplerPathError(const std::string& fcstd) {
 // JointType is an index into the joint's own CustomEnumList when the file has one.
 TEST(FreeCadImport, JointTypeIsReadFromTheFilesOwnEnumList) {
   const std::string was = "<Integer value=\"1\"/>", at = "<Object name=\"Joint003\">";
-  const std::string reordered = Replaced(FourBarDocument(), was,
-                                         "<Integer value=\"2\" CustomEnum=\"true\"/><CustomEnumList count=\"3\"><Enum "
-                                         "value=\"Fixed\"/><Enum value=\"Slider\"/><Enum value=\"Revolute\"/></CustomEnumList>",
-                                         at);
+  const std::string reordered =
+      Replaced(FourBarDocument(), was,
+               "<Integer value=\"2\" CustomEnum=\"true\"/><CustomEnumList count=\"3\"><Enum "
+               "value=\"Fixed\"/><Enum value=\"Slider\"/><Enum value=\"Revolute\"/></CustomEnumList>",
+               at);
   const auto r = Import(reordered, ForeignFormat::FreeCad, "a.FCStd:Document.xml");
   ASSERT_TRUE(r.ok()) << Errors(r);
   ASSERT_EQ(r.spec->joints.size(), 4u);
   EXPECT_EQ(*r.spec->joints[3].name, "D");
   EXPECT_EQ(*r.spec->joints[3].type, "revolute");  // index 2 of the file's list, not FreeCAD's Cylindrical
-  const std::string unknown =
-      Replaced(FourBarDocument(), was,
-               "<Integer value=\"0\" CustomEnum=\"true\"/><CustomEnumList count=\"1\"><Enum value=\"Hinge\"/></CustomEnumList>", at);
+  const std::string unknown = Replaced(
+      FourBarDocument(), was,
+      "<Integer value=\"0\" CustomEnum=\"true\"/><CustomEnumList count=\"1\"><Enum value=\"Hinge\"/></CustomEnumList>",
+      at);
   const auto u = Import(unknown, ForeignFormat::FreeCad, "a.FCStd:Document.xml");
   EXPECT_FALSE(u.ok());
-  EXPECT_NE(Errors(u).find("JointType 'Hinge' is not one of FreeCAD 1.x's joint types"), std::string::npos) << Errors(u);
+  EXPECT_NE(Errors(u).find("JointType 'Hinge' is not one of FreeCAD 1.x's joint types"), std::string::npos)
+      << Errors(u);
 }
 
 // Activated=false and Suppressed=true joints are skipped, each with a warning naming it.
 TEST(FreeCadImport, DeactivatedAndSuppressedJointsAreSkippedWithAWarning) {
   const std::string was = "<Property name=\"JointType\"";
-  for (const auto& [prop, says] : {std::pair<std::string, std::string>{"Activated\" type=\"App::PropertyBool\"><Bool value=\"false\"/>",
-                                                                       "Revolute joint 'D' is not activated"},
-                                   {"Suppressed\" type=\"App::PropertyBool\"><Bool value=\"true\"/>",
-                                    "suppressed Revolute joint 'D': not imported"}}) {
-    const std::string doc =
-        Replaced(FourBarDocument(), was, "<Property name=\"" + prop + "</Property>" + was, "<Object name=\"Joint003\">");
+  for (const auto& [prop, says] :
+       {std::pair<std::string, std::string>{"Activated\" type=\"App::PropertyBool\"><Bool value=\"false\"/>",
+                                            "Revolute joint 'D' is not activated"},
+        {"Suppressed\" type=\"App::PropertyBool\"><Bool value=\"true\"/>",
+         "suppressed Revolute joint 'D': not imported"}}) {
+    const std::string doc = Replaced(FourBarDocument(), was, "<Property name=\"" + prop + "</Property>" + was,
+                                     "<Object name=\"Joint003\">");
     const auto r = Import(doc, ForeignFormat::FreeCad, "a.FCStd:Document.xml");
     ASSERT_TRUE(r.ok()) << Errors(r);
     EXPECT_EQ(r.spec->joints.size(), 3u) << says;
@@ -139,26 +146,31 @@ TEST(FreeCadImport, DeactivatedAndSuppressedJointsAreSkippedWithAWarning) {
 // (Reference "RockerPart.Rocker.Vertex1") moves as the container, its joint frames
 // relative to the inner object.
 TEST(FreeCadImport, LinksAndPartContainersArePlacedAsFreeCadPlacesThem) {
-  const std::string rocker_placement = "<Property name=\"Placement\" type=\"App::PropertyPlacement\"><PropertyPlacement Px=\"100.0\"";
-  const std::string linked = Replaced(
-      FourBarDocument(), rocker_placement,
-      "<Property name=\"Placement\" type=\"App::PropertyPlacement\"><PropertyPlacement Px=\"500\" Py=\"0\" Pz=\"0\" Q0=\"0\" "
-      "Q1=\"0\" Q2=\"0\" Q3=\"1\"/></Property><Property name=\"LinkPlacement\" type=\"App::PropertyPlacement\"><PropertyPlacement Px=\"100.0\"",
-      "<Object name=\"Rocker\">");
+  const std::string rocker_placement =
+      "<Property name=\"Placement\" type=\"App::PropertyPlacement\"><PropertyPlacement Px=\"100.0\"";
+  const std::string linked = Replaced(FourBarDocument(), rocker_placement,
+                                      "<Property name=\"Placement\" type=\"App::PropertyPlacement\"><PropertyPlacement "
+                                      "Px=\"500\" Py=\"0\" Pz=\"0\" Q0=\"0\" "
+                                      "Q1=\"0\" Q2=\"0\" Q3=\"1\"/></Property><Property name=\"LinkPlacement\" "
+                                      "type=\"App::PropertyPlacement\"><PropertyPlacement Px=\"100.0\"",
+                                      "<Object name=\"Rocker\">");
   const auto r = Import(linked, ForeignFormat::FreeCad, "a.FCStd:Document.xml");
   ASSERT_TRUE(r.ok()) << Errors(r);
   ASSERT_EQ(*r.spec->bodies[2].name, "rocker");
   EXPECT_NEAR(r.spec->bodies[2].position->c[0].number, 0.1, 1e-15);  // LinkPlacement's 100 mm, not Placement's 500
   EXPECT_LT(CouplerPathError(Fcstd("linked.FCStd", linked)), 1e-12);
   // The rocker inside RockerPart at x = 100 mm, itself at the origin of the part.
-  std::string nested = Replaced(FourBarDocument(), "<Object type=\"App::FeaturePython\" name=\"GroundedJoint\"/>",
-                                "<Object type=\"App::Part\" name=\"RockerPart\"/><Object type=\"App::FeaturePython\" name=\"GroundedJoint\"/>");
-  nested = Replaced(nested, "<PropertyPlacement Px=\"100.0\"", "<PropertyPlacement Px=\"0\"", "<Object name=\"Rocker\">");
-  nested = Replaced(nested, "<Object name=\"GroundedJoint\">",
-                    "<Object name=\"RockerPart\"><Properties Count=\"2\"><Property name=\"Label\" type=\"App::PropertyString\">"
-                    "<String value=\"rocker_part\"/></Property><Property name=\"Placement\" type=\"App::PropertyPlacement\">"
-                    "<PropertyPlacement Px=\"100\" Py=\"0\" Pz=\"0\" Q0=\"0\" Q1=\"0\" Q2=\"0\" Q3=\"1\"/></Property>"
-                    "</Properties></Object><Object name=\"GroundedJoint\">");
+  std::string nested = Replaced(
+      FourBarDocument(), "<Object type=\"App::FeaturePython\" name=\"GroundedJoint\"/>",
+      "<Object type=\"App::Part\" name=\"RockerPart\"/><Object type=\"App::FeaturePython\" name=\"GroundedJoint\"/>");
+  nested =
+      Replaced(nested, "<PropertyPlacement Px=\"100.0\"", "<PropertyPlacement Px=\"0\"", "<Object name=\"Rocker\">");
+  nested = Replaced(
+      nested, "<Object name=\"GroundedJoint\">",
+      "<Object name=\"RockerPart\"><Properties Count=\"2\"><Property name=\"Label\" type=\"App::PropertyString\">"
+      "<String value=\"rocker_part\"/></Property><Property name=\"Placement\" type=\"App::PropertyPlacement\">"
+      "<PropertyPlacement Px=\"100\" Py=\"0\" Pz=\"0\" Q0=\"0\" Q1=\"0\" Q2=\"0\" Q3=\"1\"/></Property>"
+      "</Properties></Object><Object name=\"GroundedJoint\">");
   nested = Replaced(nested, "\"Rocker.Vertex2\"", "\"RockerPart.Rocker.Vertex2\"");
   nested = Replaced(nested, "\"Rocker.Vertex1\"", "\"RockerPart.Rocker.Vertex1\"");
   const auto n = Import(nested, ForeignFormat::FreeCad, "a.FCStd:Document.xml");
@@ -191,5 +203,5 @@ TEST(FreeCadImport, MalformedArchivesAndDocumentsAreRefused) {
   EXPECT_NE(cli.out.find("gears.FCStd:Document.xml:"), std::string::npos) << cli.out;
 }
 
-}  // namespace
+}  // namespace freecad_test
 }  // namespace mechkin::import_test
