@@ -203,5 +203,19 @@ TEST(FreeCadImport, MalformedArchivesAndDocumentsAreRefused) {
   EXPECT_NE(cli.out.find("gears.FCStd:Document.xml:"), std::string::npos) << cli.out;
 }
 
+// An unsupported joint: import, check and run exit 1 naming the place and the reason; no file is written.
+TEST(FreeCadImport, CommandsExitOneAndWriteNothing) {
+  const std::string gears = Fcstd("gears-cli.FCStd", WithJointType(11));
+  const std::string out = TempFile("never-written-freecad.json", "") + ".x";
+  const int line = LineOf(FourBarDocument(), "<Object name=\"Joint003\">");
+  for (const std::string& cmd : {"import " + gears + " -o " + out, "check " + gears, "run " + gears + " --drive A=t"}) {
+    const auto r = mechkin_test::RunCli(cmd);
+    EXPECT_EQ(r.code, 1) << cmd << ": " << r.out;
+    EXPECT_NE(r.out.find("gears-cli.FCStd:Document.xml:" + std::to_string(line) + ": "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Gears joint is not supported"), std::string::npos) << r.out;
+  }
+  EXPECT_FALSE(std::ifstream(out).good());
+}
+
 }  // namespace freecad_test
 }  // namespace mechkin::import_test
