@@ -180,6 +180,7 @@ class Stepper {
   enum class Verdict { Undecided, Passed, Stop };
   Verdict ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag, AnalysisReport* rep);
   Verdict PassOn(double t, double h, StepDiagnostics* diag, double* bad_t, Outcome* out);
+  Verdict RetryAcrossPassage(double t, double h, double* bad_t, Outcome* out, AnalysisReport* rep);
   bool StopAtConditionMinimum(double t, double h, AnalysisReport* rep);
   bool ActOnPending(double h, AnalysisReport* rep);
   SingularityClassifier& Classifier();
@@ -438,6 +439,33 @@ Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Out
   return PassOn(t, h, diag, bad_t, out);
 }
 
+// A step that does not converge where a unique passage lies inside it: the predictor
+// starts too close to a position of corank ≥ 2 (its rates amplified by 1/σ_1), and
+// the bisection's sub-steps land on the position itself, so the failure looks like a
+// limit of motion (the N-four-bar, N = 3, in 360 steps: 0.6 steps before it). Located
+// and classified as a sign flip is; the step is then taken from the classifier's last
+// solved pose past the position, the sign of det Φ_q taken afresh there.
+Stepper::Verdict Stepper::RetryAcrossPassage(double t, double h, double* bad_t, Outcome* out, AnalysisReport* rep) {
+  if (!options_.branch_guard || ws_->block_solver() || !(*bad_t > good_.t)) return Verdict::Undecided;
+  // Over the whole step, not from its last good sub-step to the failed one: those
+  // may lie within 1e-8 s of the position, where nothing is well determined.
+  const SingularClassification c = Classifier().Classify(prev_, t, h);
+  if (!(c.t > prev_.t && c.t < t)) return Verdict::Undecided;
+  if (c.kind == SingularKind::Bifurcation) {
+    StopAtBifurcation(c, rep);
+    return Verdict::Stop;
+  }
+  const SystemState* past = Classifier().SolvedPast(c.t);
+  if (c.kind != SingularKind::UniquePassage || !past) return Verdict::Undecided;
+  if (std::abs(c.t - passage_t_) >= 1e-6 * h) rep->notes.push_back(PassageNote(model_, c));
+  pending_.reset();
+  passage_t_ = c.t;
+  s_ = *past;
+  have_sign_ = false;
+  *out = Attempt(t, t - past->t, false);
+  return Verdict::Passed;
+}
+
 // Past a unique passage: the step again, its sign change expected.
 Stepper::Verdict Stepper::PassOn(double t, double h, StepDiagnostics* diag, double* bad_t, Outcome* out) {
   s_ = prev_;
@@ -508,6 +536,7 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       if (out != Outcome::Ok) out = Refine(t, &diag, &bad_t);
     }
     if (out == Outcome::Suspect && step > 0 && ClassifySuspect(t, h, &bad_t, &out, &diag, rep) == Verdict::Stop) return;
+    if (out == Outcome::Failed && step > 0 && RetryAcrossPassage(t, h, &bad_t, &out, rep) == Verdict::Stop) return;
     if (out != Outcome::Ok && step > 0 && StopAtLimitOrSingularity(out, t, bad_t, rep)) return;
     if (out != Outcome::Ok) {
       rep->stop = StopKind::SolveFailed;

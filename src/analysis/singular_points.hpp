@@ -54,6 +54,9 @@ class SingularityClassifier {
   /// The pose at the located t (after Classify returned Fold, Bifurcation or UniquePassage).
   const SystemState& pose() const { return pose_; }
   const std::vector<int>& active() const { return ws_.active(); }
+  /// After Classify: the latest well-determined pose it solved on the run's branch past
+  /// `t_star` (tight, with derivatives to order 3), or nullptr when it solved none.
+  const SystemState* SolvedPast(double t_star) const;
 
  private:
   struct Sample {
@@ -68,6 +71,7 @@ class SingularityClassifier {
   double Locate(double ta, double tb, double step, int* corank);
   double FitZero(double center, double delta, int corank, bool* ok);
   int CountVanishing(double center, double delta, bool* ok);
+  void PoseAt(double t, double delta, int corank);
   SingularKind ClassifyAt(double t, double delta, int corank, int* branches, bool* exact);
   Eigen::VectorXd SingularValues(const SystemState& s) const;
 

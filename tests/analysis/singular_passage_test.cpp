@@ -23,10 +23,11 @@ struct Row {
   std::vector<double> coupler_x, coupler_y;  // coupler frame origins (the left tips)
 };
 
-AnalysisReport RunRows(const nlohmann::json& doc, int order, std::vector<Row>* rows) {
+AnalysisReport RunRows(const nlohmann::json& doc, int order, std::vector<Row>* rows, double tolerance = 0) {
   AnalysisOptions opt;
   opt.order = order;
   opt.predictor_order = std::min(3, order);
+  if (tolerance > 0) opt.tolerance = tolerance;
   const Model m = testing_files::FromJson(doc);
   return RunKinematicAnalysis(m, opt, [&](const SystemState& s, const StepDiagnostics&) {
     Row r{s.t, {}, {}, {}};
@@ -121,7 +122,8 @@ INSTANTIATE_TEST_SUITE_P(BothDirections, NFourBarAtPlus90,
 // tolerances: 672 runs) once got wrong: the bifurcation passed silently (N even: the
 // one-step κ lagged, the position was located too far ahead, or classified from a
 // pose on another assembly) or the unique passage stopped the run (N = 3: classified
-// again from a pose 3e-6 s from it). Each must end as the closed form says: the first
+// again from a pose 3e-6 s from it; in 360 steps the step across it diverged and read
+// as a limit of motion). Each must end as the closed form says: the first
 // +90° stops the run, a −90° before it is noted and passed.
 struct Scanned {
   int n, steps;
@@ -132,12 +134,8 @@ class FormerlyMisjudged : public ::testing::TestWithParam<Scanned> {};
 
 TEST_P(FormerlyMisjudged, EndsAsTheClosedFormSays) {
   const Scanned c = GetParam();
-  AnalysisOptions opt;
-  opt.order = 3;
-  opt.predictor_order = 3;
-  if (c.tolerance > 0) opt.tolerance = c.tolerance;
-  const AnalysisReport rep = RunKinematicAnalysis(testing_files::FromJson(NFourBar(c.n, c.theta0, c.rate, c.steps)), opt,
-                                                  [](const SystemState&, const StepDiagnostics&) { return true; });
+  std::vector<Row> rows;
+  const AnalysisReport rep = RunRows(NFourBar(c.n, c.theta0, c.rate, c.steps), 3, &rows, c.tolerance);
   // Crank angles θ0 + rate·t in (0, 1]: the first at +90° (mod 360°) stops the run.
   auto first_at = [&](double target) {
     double first = 2;
@@ -161,12 +159,18 @@ TEST_P(FormerlyMisjudged, EndsAsTheClosedFormSays) {
     EXPECT_NE(rep.notes[0].find("unique passage"), std::string::npos) << rep.notes[0];
     EXPECT_NEAR(NoteTime(rep.notes[0]), t_passage, 1e-9) << rep.notes[0];
   }
+  // Every row on the parallelogram branch: each rocker turns as the crank.
+  for (const Row& r : rows)
+    for (int i = 0; i <= c.n; ++i)
+      EXPECT_NEAR(std::remainder(r.rocker_turn[i] - c.rate * r.t * M_PI / 180, 2 * M_PI), 0, 1e-9) << r.t;
+  EXPECT_GT(rows.size(), static_cast<size_t>(c.steps / 2));
 }
 
 INSTANTIATE_TEST_SUITE_P(Scan, FormerlyMisjudged,
                          ::testing::Values(Scanned{4, 360, 180, -97, 1e-13}, Scanned{2, 50, -150, 359, 0},
                                            Scanned{2, 50, -150, 359, 1e-13}, Scanned{3, 50, 0, -97, 0},
-                                           Scanned{3, 100, 180, 97, 0}, Scanned{3, 50, 37, -181, 0}),
+                                           Scanned{3, 100, 180, 97, 0}, Scanned{3, 50, 37, -181, 0},
+                                           Scanned{3, 360, 37, -181, 0}, Scanned{3, 360, 37, -181, 1e-13}),
                          [](const ::testing::TestParamInfo<Scanned>& info) {
                            return "N" + std::to_string(info.param.n) + "_" + std::to_string(info.param.steps) + "steps_" +
                                   std::to_string(info.index);
