@@ -83,7 +83,7 @@ def test_n_four_bar_bounds_bound(n, theta0, rate, tol):
         assert err[:, 3].max() > 1e-12
 
 
-def piston(tol):
+def piston(tol, error_bounds="auto"):
     """The piston-driven slider-crank of tools/closed_form_errors.py, stored exactly:
     crank angle θ0·cos(πt/2), its dead centre at t = 1, run to t = 0.998."""
     a, b, bx, by = 34 / 64, 50 / 64, 16 / 64, 30 / 64
@@ -103,7 +103,7 @@ def piston(tol):
            "drivers": [{"name": "piston", "type": "translation", "joint": "P", "function": fn}],
            "outputs": [{"name": "crank_angle", "type": "joint", "joint": "A"}],
            "analysis": {"start": 0, "end": 0.998, "steps": 499}}
-    m = mechkin.loads(doc).run(order=3, si=True, tol=tol)
+    m = mechkin.loads(doc).run(order=3, si=True, tol=tol, error_bounds=error_bounds)
     w = math.pi / 2
     c, s = np.cos(w * m.t), np.sin(w * m.t)
     exact = [th0 * (c - 1), -th0 * w * s, -th0 * w * w * c, th0 * w ** 3 * s]
@@ -119,6 +119,19 @@ def test_piston_toward_its_dead_centre_bounds_bound(tol):
     assert m.complete and m["condition"][-1] > 500  # κ grows toward the dead centre
     assert (err <= bounds_of(m)).all()
     assert err[-1, 3] > 1e-10  # the jerk there has lost digits
+
+
+@pytest.mark.parametrize("tol", [1e-10, 1e-13])
+def test_piston_measured_bounds_bound_on_every_row(tol):
+    """error_bounds='measured' (`run --error-bounds measured`): every row's bounds are
+    measured, and hold where the default's regular rows understate the jerk."""
+    m, err = piston(tol, error_bounds="measured")
+    assert m.complete and m["condition"][-1] > 500
+    ratio = err / bounds_of(m)
+    assert ratio.max() <= 1, "row %d order %d" % np.unravel_index(np.argmax(ratio), ratio.shape)
+    default, _ = piston(tol)
+    assert np.array_equal(np.asarray(m["crank_angle_ttt"]), np.asarray(default["crank_angle_ttt"]))  # same motion
+    assert (err[:, 3] > bounds_of(default)[:, 3]).any()  # where the default's bound did not hold
 
 
 @pytest.mark.parametrize("tol", [1e-10, 1e-13])

@@ -172,7 +172,8 @@ class Stepper {
   void CheckSetAsideOnSolvedBodies();
   void FinishDiagnostics(StepDiagnostics* diag);
   bool MeasuresBounds(double condition) const {
-    return condition >= kMeasureBoundsCondition && condition >= kMeasureBoundsGrowth * bounds_regular_;
+    return options_.measure_every_row ||
+           (condition >= kMeasureBoundsCondition && condition >= kMeasureBoundsGrowth * bounds_regular_);
   }
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
   bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
