@@ -434,7 +434,7 @@ Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Out
     return Verdict::Stop;
   }
   if (c.kind != SingularKind::UniquePassage || std::abs(c.t - passage_t_) < 1e-6 * h) return Verdict::Undecided;
-  pending_.reset();  // one farther ahead is located again when the rows reach it
+  if (pending_ && std::abs(pending_->first.t - c.t) < 1e-6 * h) pending_.reset();  // the same one, noted here
   passage_t_ = c.t;
   rep->notes.push_back(PassageNote(model_, c));
   return PassOn(t, h, diag, bad_t, out);
@@ -445,7 +445,10 @@ Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Out
 // the bisection's sub-steps land on the position itself, so the failure looks like a
 // limit of motion (the N-four-bar, N = 3, in 360 steps: 0.6 steps before it). Located
 // and classified as a sign flip is; the step is then taken from the classifier's last
-// solved pose past the position, the sign of det Φ_q taken afresh there.
+// solved pose past the position (within the step), the sign of det Φ_q taken afresh
+// there. Only a retry that succeeds notes the passage; otherwise the step is left as
+// it failed (a limit of motion of a redundant mechanism — Bricard's — can look like a
+// passage to the solved rows alone, and the retry fails on the set-aside ones).
 Stepper::Verdict Stepper::RetryAcrossPassage(double t, double h, double* bad_t, Outcome* out, AnalysisReport* rep) {
   if (!options_.branch_guard || ws_->block_solver() || !(*bad_t > good_.t)) return Verdict::Undecided;
   // Over the whole step, not from its last good sub-step to the failed one: those
@@ -456,14 +459,22 @@ Stepper::Verdict Stepper::RetryAcrossPassage(double t, double h, double* bad_t, 
     StopAtBifurcation(c, rep);
     return Verdict::Stop;
   }
-  const SystemState* past = Classifier().SolvedPast(c.t);
+  const SystemState* past = Classifier().SolvedPast(c.t, t);
   if (c.kind != SingularKind::UniquePassage || !past) return Verdict::Undecided;
-  if (std::abs(c.t - passage_t_) >= 1e-6 * h) rep->notes.push_back(PassageNote(model_, c));
-  pending_.reset();
-  passage_t_ = c.t;
+  const double kept_sign = prev_sign_;
+  const bool kept_have_sign = have_sign_;
   s_ = *past;
   have_sign_ = false;
-  *out = Attempt(t, t - past->t, false);
+  if (Attempt(t, t - past->t, false) != Outcome::Ok) {
+    s_ = prev_;
+    prev_sign_ = kept_sign;
+    have_sign_ = kept_have_sign;
+    return Verdict::Undecided;
+  }
+  *out = Outcome::Ok;
+  if (std::abs(c.t - passage_t_) >= 1e-6 * h) rep->notes.push_back(PassageNote(model_, c));
+  if (pending_ && std::abs(pending_->first.t - c.t) < 1e-6 * h) pending_.reset();  // the same one, noted here
+  passage_t_ = c.t;
   return Verdict::Passed;
 }
 

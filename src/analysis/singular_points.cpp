@@ -95,15 +95,15 @@ Eigen::VectorXd SingularityClassifier::SingularValues(const SystemState& s) cons
   return svd.singularValues().reverse();
 }
 
-// A tight solve at t from the Taylor prediction off the nearest sample (the branch
-// the run is on), with its derivatives for the next predictions and its singular values.
-const SystemState* SingularityClassifier::SolvedPast(double t_star) const {
+const SystemState* SingularityClassifier::SolvedPast(double t_star, double t_end) const {
   const Sample* latest = nullptr;
   for (const Sample& s : samples_)
-    if (s.s.t > t_star && WellDetermined(s) && (!latest || s.s.t > latest->s.t)) latest = &s;
+    if (s.s.t > t_star && s.s.t <= t_end && WellDetermined(s) && (!latest || s.s.t > latest->s.t)) latest = &s;
   return latest ? &latest->s : nullptr;
 }
 
+// A tight solve at t from the Taylor prediction off the nearest sample (the branch
+// the run is on), with its derivatives for the next predictions and its singular values.
 bool SingularityClassifier::Probe(double t, const Sample** out) {
   // The source: the nearest sample whose derivatives are meaningful (one almost on
   // the singular position predicts nothing: its velocities are amplified by 1/σ_min).
@@ -230,7 +230,7 @@ SingularClassification SingularityClassifier::Classify(const SystemState& base, 
 // (the fit's own, at ±δ, ±2δ) — one closer to the position may have converged to
 // another assembly or be fixed only to √(residual) along the null space (Newton
 // stalls there): the N-four-bar, N = 2, had one 1.4e-11 s from t* with σ_min 0.009.
-// Of the three nearest such samples the prediction whose k vanishing singular values
+// Of the eight nearest such samples the prediction whose k vanishing singular values
 // are smallest is kept: the nearest alone left them at 1e-13 for N = 3 (360 steps),
 // too far from q* for the tangent count, where a sample farther off gave 1e-17.
 void SingularityClassifier::PoseAt(double t, double delta, int corank) {

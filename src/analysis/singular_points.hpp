@@ -49,14 +49,15 @@ class SingularityClassifier {
  public:
   SingularityClassifier(const ConstraintSystem& sys, const std::vector<int>& active);
   /// Looks for a zero of the smallest singular values between ta (`base`, solved on
-  /// the run's branch) and tb, probing at most a fraction of `step` beyond.
+  /// the run's branch) and tb; where σ_1 still falls at an end the search walks on,
+  /// up to 5 (tb − ta) beyond it.
   SingularClassification Classify(const SystemState& base, double tb, double step);
   /// The pose at the located t (after Classify returned Fold, Bifurcation or UniquePassage).
   const SystemState& pose() const { return pose_; }
   const std::vector<int>& active() const { return ws_.active(); }
-  /// After Classify: the latest well-determined pose it solved on the run's branch past
-  /// `t_star` (tight, with derivatives to order 3), or nullptr when it solved none.
-  const SystemState* SolvedPast(double t_star) const;
+  /// After Classify: the latest well-determined pose it solved on the run's branch in
+  /// (t_star, t_end] (tight, with derivatives to order 3), or nullptr when it solved none.
+  const SystemState* SolvedPast(double t_star, double t_end) const;
 
  private:
   struct Sample {
