@@ -111,7 +111,9 @@ constexpr double kReselectGain = 4;  // ... and switch when that set is this muc
 constexpr double kWellConditionedRows = 1e4;  // 1-norm condition a new set must stay below
 constexpr int kMaxReselectColumns = 1200;  // 200 bodies: the dense QR of the selection
 // Rows whose condition estimate reaches this, with 1/κ heading for zero, have the
-// step before them examined for a singular position (bundled mechanisms stay below 40).
+// step before them examined for a singular position (bundled mechanisms: below 40 on
+// the one-step estimate; three pass 50 on the sharper one, with their tables and
+// times unchanged, docs/singularities.md §1).
 constexpr double kExamineCondition = 50;
 // A position located that many steps ahead of the row examined is kept (pending)
 // until a row passes it: the one-step condition estimate rises unevenly, and the
