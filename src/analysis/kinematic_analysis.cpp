@@ -116,7 +116,7 @@ constexpr int kMaxReselectColumns = 1200;  // 200 bodies: the dense QR of the se
 // times unchanged, docs/singularities.md §1).
 constexpr double kExamineCondition = 50;
 // A position located that many steps ahead of the row examined is kept (pending)
-// until a row passes it: the one-step condition estimate rises unevenly, and the
+// until a row passes it: the condition estimate rises unevenly, and the
 // rows nearest the position may be the ones whose examination cannot classify it
 // (the N-four-bar, N = 4, 360 steps: located 4 steps ahead, missed from the rows
 // beside it).
@@ -184,6 +184,7 @@ class Stepper {
   Verdict ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag, AnalysisReport* rep);
   Verdict PassOn(double t, double h, StepDiagnostics* diag, double* bad_t, Outcome* out);
   Verdict RetryAcrossPassage(double t, double h, double* bad_t, Outcome* out, AnalysisReport* rep);
+  void NotePassage(const SingularClassification& c, double h, AnalysisReport* rep);
   bool StopAtConditionMinimum(double t, double h, AnalysisReport* rep);
   bool ActOnPending(double h, AnalysisReport* rep);
   SingularityClassifier& Classifier();
@@ -436,9 +437,7 @@ Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Out
     return Verdict::Stop;
   }
   if (c.kind != SingularKind::UniquePassage || std::abs(c.t - passage_t_) < 1e-6 * h) return Verdict::Undecided;
-  if (pending_ && std::abs(pending_->first.t - c.t) < 1e-6 * h) pending_.reset();  // the same one, noted here
-  passage_t_ = c.t;
-  rep->notes.push_back(PassageNote(model_, c));
+  NotePassage(c, h, rep);
   return PassOn(t, h, diag, bad_t, out);
 }
 
@@ -474,10 +473,15 @@ Stepper::Verdict Stepper::RetryAcrossPassage(double t, double h, double* bad_t, 
     return Verdict::Undecided;
   }
   *out = Outcome::Ok;
-  if (std::abs(c.t - passage_t_) >= 1e-6 * h) rep->notes.push_back(PassageNote(model_, c));
-  if (pending_ && std::abs(pending_->first.t - c.t) < 1e-6 * h) pending_.reset();  // the same one, noted here
-  passage_t_ = c.t;
+  NotePassage(c, h, rep);
   return Verdict::Passed;
+}
+
+// A unique passage the run has crossed: noted once, and no longer pending.
+void Stepper::NotePassage(const SingularClassification& c, double h, AnalysisReport* rep) {
+  if (std::abs(c.t - passage_t_) >= 1e-6 * h) rep->notes.push_back(PassageNote(model_, c));
+  if (pending_ && std::abs(pending_->first.t - c.t) < 1e-6 * h) pending_.reset();  // the same one
+  passage_t_ = c.t;
 }
 
 // Past a unique passage: the step again, its sign change expected.
@@ -522,8 +526,7 @@ bool Stepper::ActOnPending(double h, AnalysisReport* rep) {
     rep->singular = sp;
     return true;
   }
-  if (std::abs(c.t - passage_t_) >= 1e-6 * h) rep->notes.push_back(PassageNote(model_, c));
-  passage_t_ = c.t;
+  NotePassage(c, h, rep);
   return false;
 }
 

@@ -223,9 +223,6 @@ SingularClassification SingularityClassifier::Classify(const SystemState& base, 
   return out;
 }
 
-// At the located t: the pose (Taylor prediction from the nearest sample, well inside
-// its accuracy), the null spaces U0, V0 of the scaled Φ_q, the fold test U0ᵀν ≠ 0 and
-// the second-order tangent cone U0ᵀγ(w + ρV0α) = 0 (docs/singularities.md §2–§3).
 // pose_ at t: the Taylor prediction from a well-determined sample at least δ/2 away
 // (the fit's own, at ±δ, ±2δ) — one closer to the position may have converged to
 // another assembly or be fixed only to √(residual) along the null space (Newton
@@ -254,6 +251,9 @@ void SingularityClassifier::PoseAt(double t, double delta, int corank) {
   }
 }
 
+// At the located t: the pose (PoseAt), the null spaces U0, V0 of the scaled Φ_q, the
+// fold test U0ᵀν ≠ 0 and the second-order tangent cone U0ᵀγ(w + ρV0α) = 0
+// (docs/singularities.md §2–§3).
 SingularKind SingularityClassifier::ClassifyAt(double t, double delta, int corank, int* branches, bool* exact) {
   const ConstraintSystem& sys = ws_.system();
   PoseAt(t, delta, corank);
