@@ -300,7 +300,7 @@ class Model:
         ends there, motion.stop.kind 'contact'; either way motion.contacts lists
         them; `run --on-contact`), error_bounds ('auto': measured near singular
         positions, from the condition estimate elsewhere; 'measured': every row,
-        bounds that hold at 1.2-2.5x the time; `run --error-bounds`). Out-of-range values raise ValueError with the
+        bounds that hold at 1.5-2.9x the time; `run --error-bounds`). Out-of-range values raise ValueError with the
         CLI's message. start, end, steps replace the file's analysis span."""
         if request is None:
             norm = lambda sel: None if sel is None else ([sel] if isinstance(sel, str) else list(sel))

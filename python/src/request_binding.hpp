@@ -99,7 +99,7 @@ file has inertia or loads), sensitivity=[] (parameter names), max_iterations=25,
 on_limit='stop' ('report': a joint reaching its limits is noted and the run goes on;
 the CLI's --on-limit), on_contact='report' ('stop': the run ends at the first contact of
 a clearance output's bodies; the CLI's --on-contact), error_bounds='auto' ('measured':
-every row's error bounds measured, bounds that hold, 1.2-2.5x the time; the CLI's
+every row's error bounds measured, bounds that hold, 1.5-2.9x the time; the CLI's
 --error-bounds).)doc")
       .def(py::init(&MakeRequest), py::arg("order") = 3, py::arg("tol") = 1e-10, py::arg("solver") = "newton",
            py::arg("formulation") = "omega", py::arg("bodies") = py::none(), py::arg("outputs") = py::none(),
@@ -145,7 +145,7 @@ every row's error bounds measured, bounds that hold, 1.2-2.5x the time; the CLI'
             r.error_bounds = NamedOrThrow<mechkin::ErrorBoundsChoice>("error_bounds", s);
           },
           "rows whose error bounds are measured: 'auto' (near singular positions) or 'measured' (every row: "
-          "bounds that hold, 1.2-2.5x the time)")
+          "bounds that hold, 1.5-2.9x the time)")
       .def(
           "is_valid",
           [](const RunRequest& r) {

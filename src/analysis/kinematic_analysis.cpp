@@ -223,7 +223,6 @@ class Stepper {
   bool step_have_sign_ = false;
   std::vector<std::unique_ptr<StepObserver>> observers_;
   std::unique_ptr<RowErrorEstimator> errors_;  // the measured bounds near singular positions
-  bool extended_ = false;  // the last attempt's pose came from the long-double phase
   double bounds_regular_ = std::numeric_limits<double>::infinity();  // smallest sharper κ along the run
 };
 
@@ -250,7 +249,6 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
   solve_.extended_precision =
       accuracy_phase && NeedsExtendedResidual(options_.tolerance, last_condition_, regular_condition_, options_.order);
   last_ = SolvePosition(*ws_, solve_, &s_, reuse && options_.modified_newton);
-  extended_ = solve_.extended_precision;
   if (!last_.success || !SetAsideCloses()) return Outcome::Failed;
   const double sign = ws_->factorization().Sign();
   if (options_.branch_guard) {
@@ -329,7 +327,7 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   bounds_regular_ = std::min(bounds_regular_, kappa);
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
   errors_->Observe(s_);
-  if (MeasuresBounds(kappa)) errors_->Raise(*ws_, s_, kappa, extended_, diag->error_bound);
+  if (MeasuresBounds(kappa)) errors_->Raise(*ws_, s_, kappa, diag->error_bound);
 }
 
 // Redundancy that follows the motion (issue "Right at every order", item 1): the

@@ -37,7 +37,7 @@ enum class LimitAction { Stop, Report };
 enum class ContactAction { Stop, Report };
 /// Which rows have their error bounds measured (`run --error-bounds`, Python's
 /// error_bounds): those near singular positions (auto, the default), or every row
-/// (measured: bounds that hold on every row, docs/constraints.md §8, at 1.2–2.5× the time).
+/// (measured: bounds that hold on every row, docs/constraints.md §8, at 1.5–2.9× the time).
 enum class ErrorBoundsChoice { Auto, Measured };
 
 struct RunRequest {

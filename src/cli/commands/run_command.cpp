@@ -48,7 +48,7 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
       ->check(CLI::IsMember(NamesOf<ContactAction>()));
   cmd->add_option("--error-bounds", o->error_bounds,
                   "Rows whose error_bound columns are measured: auto (default; near singular positions, the others "
-                  "from the condition estimate) or measured (every row: bounds that hold, 1.2-2.5x the time)")
+                  "from the condition estimate) or measured (every row: bounds that hold, 1.5-2.9x the time)")
       ->check(CLI::IsMember(NamesOf<ErrorBoundsChoice>()));
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_flag("--quiet", o->quiet,
