@@ -42,6 +42,14 @@ def bounds_of(motion):
     return np.stack([np.asarray(motion["error_bound" + s]) for s in SUFFIX], 1)
 
 
+def loose_rows(err, bound, rows=slice(None)):
+    """(row, order) where the actual error exceeds 1e-12 and the bound is more than 100x
+    it — the issue's tightness criterion."""
+    big = (err > 1e-12) & (bound > 100 * err)
+    big[~np.isin(np.arange(len(err)), np.arange(len(err))[rows])] = False
+    return list(zip(*np.nonzero(big)))
+
+
 def n_four_bar_errors(n, theta0, rate, tol):
     """Actual error per row and order: couplers' translation and every rocker's turn and
     rates against the parallelogram motion, over the order's magnitude w^k."""
@@ -83,7 +91,24 @@ def test_n_four_bar_bounds_bound(n, theta0, rate, tol):
         assert err[:, 3].max() > 1e-12
 
 
-def piston(tol):
+@pytest.mark.parametrize("tol", [1e-10, 1e-13])
+@pytest.mark.parametrize("n,theta0,rate", CASES)
+def test_n_four_bar_bounds_tight_away_from_the_singular_position(n, theta0, rate, tol):
+    """Where the actual error exceeds 1e-12 the bound is at most 100x it, on every row
+    more than two rows (2°) from the singular position at ±90° (t ≈ 0.928). Known gap
+    (docs/constraints.md §8): on the nearest rows (κ_s 1e4-3e4) the jerk's bound is up
+    to 3600x its error — the pose's error along the near-null direction is below what
+    the long-double residual resolves there. Before the pose error was taken at unit
+    Euler parameters and its floor no longer propagated, 432 rows of these cases were
+    over 100x (up to 2.3e4x), on rows near and far from ±90°."""
+    m, err = n_four_bar_errors(n, theta0, rate, tol)
+    t = np.asarray(m["t"])
+    away = np.nonzero(np.abs(t - 90 / 97) > 0.021)[0]
+    loose = loose_rows(err, bounds_of(m), away)
+    assert not loose, ["t=%.3f order %d: %.3g vs %.3g" % (t[i], k, bounds_of(m)[i, k], err[i, k]) for i, k in loose]
+
+
+def piston(tol, error_bounds="auto"):
     """The piston-driven slider-crank of tools/closed_form_errors.py, stored exactly:
     crank angle θ0·cos(πt/2), its dead centre at t = 1, run to t = 0.998."""
     a, b, bx, by = 34 / 64, 50 / 64, 16 / 64, 30 / 64
@@ -103,7 +128,7 @@ def piston(tol):
            "drivers": [{"name": "piston", "type": "translation", "joint": "P", "function": fn}],
            "outputs": [{"name": "crank_angle", "type": "joint", "joint": "A"}],
            "analysis": {"start": 0, "end": 0.998, "steps": 499}}
-    m = mechkin.loads(doc).run(order=3, si=True, tol=tol)
+    m = mechkin.loads(doc).run(order=3, si=True, tol=tol, error_bounds=error_bounds)
     w = math.pi / 2
     c, s = np.cos(w * m.t), np.sin(w * m.t)
     exact = [th0 * (c - 1), -th0 * w * s, -th0 * w * w * c, th0 * w ** 3 * s]
@@ -119,6 +144,21 @@ def test_piston_toward_its_dead_centre_bounds_bound(tol):
     assert m.complete and m["condition"][-1] > 500  # κ grows toward the dead centre
     assert (err <= bounds_of(m)).all()
     assert err[-1, 3] > 1e-10  # the jerk there has lost digits
+
+
+@pytest.mark.parametrize("tol", [1e-10, 1e-13])
+def test_piston_measured_bounds_bound_on_every_row(tol):
+    """error_bounds='measured' (`run --error-bounds measured`): every row's bounds are
+    measured, and hold where the default's regular rows understate the jerk."""
+    m, err = piston(tol, error_bounds="measured")
+    assert m.complete and m["condition"][-1] > 500
+    ratio = err / bounds_of(m)
+    assert ratio.max() <= 1, "row %d order %d" % np.unravel_index(np.argmax(ratio), ratio.shape)
+    assert not loose_rows(err, bounds_of(m))  # and within 100x of the error where it exceeds 1e-12
+    assert (err[:, 3] > 1e-12).sum() > 50  # not vacuous
+    default, _ = piston(tol)
+    assert np.array_equal(np.asarray(m["crank_angle_ttt"]), np.asarray(default["crank_angle_ttt"]))  # same motion
+    assert (err[:, 3] > bounds_of(default)[:, 3]).any()  # where the default's bound did not hold
 
 
 @pytest.mark.parametrize("tol", [1e-10, 1e-13])
@@ -160,3 +200,4 @@ def test_bennett_bounds_bound(tol):
     assert m.complete
     assert err[:, 1].max() < 1e-9  # the closed form is the run's: not a vacuous comparison
     assert (err <= bounds_of(m)).all()
+    assert not loose_rows(err, bounds_of(m))

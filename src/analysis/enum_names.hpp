@@ -90,6 +90,12 @@ template <>
 struct EnumNames<ContactAction> {
   static constexpr EnumName<ContactAction> kAll[] = {{ContactAction::Stop, "stop"}, {ContactAction::Report, "report"}};
 };
+// Which rows have measured error bounds (`run --error-bounds`, Python's error_bounds).
+template <>
+struct EnumNames<ErrorBoundsChoice> {
+  static constexpr EnumName<ErrorBoundsChoice> kAll[] = {{ErrorBoundsChoice::Auto, "auto"},
+                                                         {ErrorBoundsChoice::Measured, "measured"}};
+};
 // `check`'s driving status (the `expect` key "driven").
 template <>
 struct EnumNames<DrivingStatus> {

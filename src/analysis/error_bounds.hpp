@@ -3,11 +3,15 @@
 
 namespace mechkin {
 
-/// With κ the (sharper) condition estimate, r the scaled residual and u the unit
+/// With κ the one-step condition estimate, r the scaled residual and u the unit
 /// round-off (constraints.md §8):
-///   e_0 = κ·max(r, 4u),   e_k = k!·κ^k·(16u + e_0)   (k ≥ 1):
-/// q^(k) is a function of the pose through k nested solves with Φ_q, so the pose's
-/// error and each solve's round-off are amplified by about κ per order. Relative to
+///   e_0 = κ·max(r, 4u),   e_k = 8u·κ^k + κ·e_0   (k ≥ 1):
+/// each solve's round-off is amplified by about κ per order, and the pose's error
+/// perturbs Φ_q once more. Where the error of the orders below does grow by κ per
+/// order (the piston's regular rows, κ ≈ 5) this understates the jerk up to 30×;
+/// 2κ^k·e_0 would hold there but overstates the bundled four-bar's jerk 1000× (its
+/// errors do not grow with the order): only measuring tells (`--error-bounds
+/// measured`, row_error_estimate.hpp). Relative to
 /// the magnitude of q^(k) over the motion. Near singular positions the rows take
 /// measured bounds instead (row_error_estimate.hpp). Checked against closed forms in
 /// python/tests/test_error_bounds.py and tests/extremes/assembly_test.cpp.

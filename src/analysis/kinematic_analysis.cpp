@@ -111,8 +111,16 @@ constexpr double kReselectGain = 4;  // ... and switch when that set is this muc
 constexpr double kWellConditionedRows = 1e4;  // 1-norm condition a new set must stay below
 constexpr int kMaxReselectColumns = 1200;  // 200 bodies: the dense QR of the selection
 // Rows whose condition estimate reaches this, with 1/κ heading for zero, have the
-// step before them examined for a singular position (bundled mechanisms stay below 40).
+// step before them examined for a singular position (bundled mechanisms: below 40 on
+// the one-step estimate; three pass 50 on the sharper one, with their tables and
+// times unchanged, docs/singularities.md §1).
 constexpr double kExamineCondition = 50;
+// A position located that many steps ahead of the row examined is kept (pending)
+// until a row passes it: the condition estimate rises unevenly, and the
+// rows nearest the position may be the ones whose examination cannot classify it
+// (the N-four-bar, N = 4, 360 steps: located 4 steps ahead, missed from the rows
+// beside it).
+constexpr double kLookAheadSteps = 8;
 // Rows whose condition estimate reaches both have their error bounds measured
 // (row_error_estimate.hpp) instead of taken from κ alone: there a derivative's error
 // grows faster than the a priori bound's powers of κ (bundled mechanisms: a few rows
@@ -166,14 +174,18 @@ class Stepper {
   void CheckSetAsideOnSolvedBodies();
   void FinishDiagnostics(StepDiagnostics* diag);
   bool MeasuresBounds(double condition) const {
-    return condition >= kMeasureBoundsCondition && condition >= kMeasureBoundsGrowth * bounds_regular_;
+    return options_.measure_every_row ||
+           (condition >= kMeasureBoundsCondition && condition >= kMeasureBoundsGrowth * bounds_regular_);
   }
   bool Reselect(const SystemState& at, double min_gain, AnalysisReport* rep);
   bool ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep);
   bool StopAtLimitOrSingularity(Outcome out, double t, double bad_t, AnalysisReport* rep);
   enum class Verdict { Undecided, Passed, Stop };
   Verdict ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag, AnalysisReport* rep);
-  bool StopAtConditionMinimum(double t, double h, const StepDiagnostics& diag, AnalysisReport* rep);
+  Verdict PassOn(double t, double h, StepDiagnostics* diag, double* bad_t, Outcome* out);
+  Verdict RetryAcrossPassage(double t, double h, double* bad_t, Outcome* out, AnalysisReport* rep);
+  void NotePassage(const SingularClassification& c, double h, AnalysisReport* rep);
+  bool StopAtConditionMinimum(double t, double h, AnalysisReport* rep);
   bool ActOnPending(double h, AnalysisReport* rep);
   SingularityClassifier& Classifier();
   void StopAtBifurcation(const SingularClassification& c, AnalysisReport* rep);
@@ -202,12 +214,15 @@ class Stepper {
   std::unique_ptr<SingularityClassifier> classifier_;
   double passage_t_ = -std::numeric_limits<double>::infinity();
   double earlier_condition_[2] = {0, 0};
+  // This row's sharper κ (FinishDiagnostics): the watch for condition minima reads it,
+  // not the one-step estimate, which lags by up to 5× three degrees from the N-four-bar's
+  // bifurcation and hid the rise there.
+  double sharper_condition_ = 0;
   std::optional<std::pair<SingularClassification, SingularPosition>> pending_;  // located ahead of the row
   double step_sign_ = 0;
   bool step_have_sign_ = false;
   std::vector<std::unique_ptr<StepObserver>> observers_;
   std::unique_ptr<RowErrorEstimator> errors_;  // the measured bounds near singular positions
-  bool extended_ = false;  // the last attempt's pose came from the long-double phase
   double bounds_regular_ = std::numeric_limits<double>::infinity();  // smallest sharper κ along the run
 };
 
@@ -234,7 +249,6 @@ Stepper::Outcome Stepper::Attempt(double t, double dt, bool reuse, bool polish) 
   solve_.extended_precision =
       accuracy_phase && NeedsExtendedResidual(options_.tolerance, last_condition_, regular_condition_, options_.order);
   last_ = SolvePosition(*ws_, solve_, &s_, reuse && options_.modified_newton);
-  extended_ = solve_.extended_precision;
   if (!last_.success || !SetAsideCloses()) return Outcome::Failed;
   const double sign = ws_->factorization().Sign();
   if (options_.branch_guard) {
@@ -309,10 +323,11 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   // Which rows take measured bounds is decided on the sharper κ (two more
   // iterations): the one-step estimate lags where a pivot collapses (constraints.md §8).
   const double kappa = std::max(diag->condition, ws_->factorization().SharperConditionEstimate(kSharperSteps));
+  sharper_condition_ = kappa;
   bounds_regular_ = std::min(bounds_regular_, kappa);
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
   errors_->Observe(s_);
-  if (MeasuresBounds(kappa)) errors_->Raise(*ws_, s_, kappa, extended_, diag->error_bound);
+  if (MeasuresBounds(kappa)) errors_->Raise(*ws_, s_, kappa, diag->error_bound);
 }
 
 // Redundancy that follows the motion (issue "Right at every order", item 1): the
@@ -408,6 +423,11 @@ void Stepper::StopAtBifurcation(const SingularClassification& c, AnalysisReport*
 Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Outcome* out, StepDiagnostics* diag,
                                           AnalysisReport* rep) {
   if (!options_.branch_guard || ws_->block_solver() || !(*bad_t > good_.t)) return Verdict::Undecided;
+  // Located ahead from well-determined rows: kept, not classified again from the
+  // step's last good pose — that one lies so close to the position that its rates
+  // are amplified by 1/σ_min and its prediction misses the position (N-four-bar, N = 3).
+  if (pending_ && pending_->first.t > good_.t - 1e-9 * h && pending_->first.t < *bad_t + 1e-9 * h)
+    return ActOnPending(h, rep) ? Verdict::Stop : PassOn(t, h, diag, bad_t, out);
   const SingularClassification c = Classifier().Classify(good_, *bad_t, h);
   if (!(c.t > good_.t - h && c.t < *bad_t + h)) return Verdict::Undecided;
   if (c.kind == SingularKind::Bifurcation) {
@@ -415,9 +435,55 @@ Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Out
     return Verdict::Stop;
   }
   if (c.kind != SingularKind::UniquePassage || std::abs(c.t - passage_t_) < 1e-6 * h) return Verdict::Undecided;
-  if (pending_ && std::abs(pending_->first.t - c.t) < 1e-6 * h) pending_.reset();  // the same one, noted here
+  NotePassage(c, h, rep);
+  return PassOn(t, h, diag, bad_t, out);
+}
+
+// A step that does not converge where a unique passage lies inside it: the predictor
+// starts too close to a position of corank ≥ 2 (its rates amplified by 1/σ_1), and
+// the bisection's sub-steps land on the position itself, so the failure looks like a
+// limit of motion (the N-four-bar, N = 3, in 360 steps: 0.6 steps before it). Located
+// and classified as a sign flip is; the step is then taken from the classifier's last
+// solved pose past the position (within the step), the sign of det Φ_q taken afresh
+// there. Only a retry that succeeds notes the passage; otherwise the step is left as
+// it failed (a limit of motion of a redundant mechanism — Bricard's — can look like a
+// passage to the solved rows alone, and the retry fails on the set-aside ones).
+Stepper::Verdict Stepper::RetryAcrossPassage(double t, double h, double* bad_t, Outcome* out, AnalysisReport* rep) {
+  if (!options_.branch_guard || ws_->block_solver() || !(*bad_t > good_.t)) return Verdict::Undecided;
+  // Over the whole step, not from its last good sub-step to the failed one: those
+  // may lie within 1e-8 s of the position, where nothing is well determined.
+  const SingularClassification c = Classifier().Classify(prev_, t, h);
+  if (!(c.t > prev_.t && c.t < t)) return Verdict::Undecided;
+  if (c.kind == SingularKind::Bifurcation) {
+    StopAtBifurcation(c, rep);
+    return Verdict::Stop;
+  }
+  const SystemState* past = Classifier().SolvedPast(c.t, t);
+  if (c.kind != SingularKind::UniquePassage || !past) return Verdict::Undecided;
+  const double kept_sign = prev_sign_;
+  const bool kept_have_sign = have_sign_;
+  s_ = *past;
+  have_sign_ = false;
+  if (Attempt(t, t - past->t, false) != Outcome::Ok) {
+    s_ = prev_;
+    prev_sign_ = kept_sign;
+    have_sign_ = kept_have_sign;
+    return Verdict::Undecided;
+  }
+  *out = Outcome::Ok;
+  NotePassage(c, h, rep);
+  return Verdict::Passed;
+}
+
+// A unique passage the run has crossed: noted once, and no longer pending.
+void Stepper::NotePassage(const SingularClassification& c, double h, AnalysisReport* rep) {
+  if (std::abs(c.t - passage_t_) >= 1e-6 * h) rep->notes.push_back(PassageNote(model_, c));
+  if (pending_ && std::abs(pending_->first.t - c.t) < 1e-6 * h) pending_.reset();  // the same one
   passage_t_ = c.t;
-  rep->notes.push_back(PassageNote(model_, c));
+}
+
+// Past a unique passage: the step again, its sign change expected.
+Stepper::Verdict Stepper::PassOn(double t, double h, StepDiagnostics* diag, double* bad_t, Outcome* out) {
   s_ = prev_;
   prev_sign_ = step_sign_;
   have_sign_ = step_have_sign_;
@@ -431,18 +497,18 @@ Stepper::Verdict Stepper::ClassifySuspect(double t, double h, double* bad_t, Out
 // before, reaches zero by the middle of the next step and κ is high, the step
 // (prev_, t] is classified before its row is delivered (docs/singularities.md §1).
 // A position located ahead is kept until the row that passes it.
-bool Stepper::StopAtConditionMinimum(double t, double h, const StepDiagnostics& diag, AnalysisReport* rep) {
+bool Stepper::StopAtConditionMinimum(double t, double h, AnalysisReport* rep) {
   const double k2 = earlier_condition_[0], k1 = earlier_condition_[1];
   earlier_condition_[0] = k1;
-  earlier_condition_[1] = diag.condition;
+  earlier_condition_[1] = sharper_condition_;
   if (pending_ && pending_->first.t <= t + 1e-9 * h) return ActOnPending(h, rep);
   if (pending_ || !options_.branch_guard || !(k2 > 0) || !(k1 > k2) || ws_->block_solver()) return false;
-  if (!(std::max(k1, diag.condition) >= kExamineCondition) || CrossesPassage(t, h)) return false;
+  if (!(std::max(k1, sharper_condition_) >= kExamineCondition) || CrossesPassage(t, h)) return false;
   const double t_zero = prev_.t + h * (1 / k1) / (1 / k2 - 1 / k1);
   if (!(t_zero < t + 0.5 * h)) return false;
   const SingularClassification c = Classifier().Classify(prev_, t, h);
   if (c.kind != SingularKind::UniquePassage && c.kind != SingularKind::Bifurcation) return false;
-  if (std::abs(c.t - passage_t_) < 1e-6 * h || !(c.t > prev_.t - 2 * h && c.t < t + 2 * h)) return false;
+  if (std::abs(c.t - passage_t_) < 1e-6 * h || !(c.t > prev_.t - 2 * h && c.t < t + kLookAheadSteps * h)) return false;
   pending_.emplace(c, DescribeSingularPosition(ws_->system(), Classifier().active(), Classifier().pose(), c));
   return c.t <= t + 1e-9 * h && ActOnPending(h, rep);
 }
@@ -458,8 +524,7 @@ bool Stepper::ActOnPending(double h, AnalysisReport* rep) {
     rep->singular = sp;
     return true;
   }
-  if (std::abs(c.t - passage_t_) >= 1e-6 * h) rep->notes.push_back(PassageNote(model_, c));
-  passage_t_ = c.t;
+  NotePassage(c, h, rep);
   return false;
 }
 
@@ -486,6 +551,7 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       if (out != Outcome::Ok) out = Refine(t, &diag, &bad_t);
     }
     if (out == Outcome::Suspect && step > 0 && ClassifySuspect(t, h, &bad_t, &out, &diag, rep) == Verdict::Stop) return;
+    if (out == Outcome::Failed && step > 0 && RetryAcrossPassage(t, h, &bad_t, &out, rep) == Verdict::Stop) return;
     if (out != Outcome::Ok && step > 0 && StopAtLimitOrSingularity(out, t, bad_t, rep)) return;
     if (out != Outcome::Ok) {
       rep->stop = StopKind::SolveFailed;
@@ -494,7 +560,7 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
     }
     FinishDiagnostics(&diag);
     ReselectAndResolve(&diag, rep);
-    if (StopAtConditionMinimum(t, h, diag, rep)) return;
+    if (StopAtConditionMinimum(t, h, rep)) return;
     const StepContext context{*ws_, prev_, step, std::max(predictor_, 1), t0};
     for (auto& o : observers_)
       if (!o->Observe(context, s_, &diag, rep)) return;

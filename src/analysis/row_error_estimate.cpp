@@ -15,6 +15,10 @@ constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;
 constexpr double kPositionSafety = 2;
 constexpr double kExtendedRoundoff = std::numeric_limits<Real>::epsilon();
 constexpr double kDerivativeSafety = 4;
+// Units of round-off per right-hand-side entry and per term of Φ_q·q^(k) in the
+// worst-case solve error (step 3 of the header): 2 halved the piston's jerk bound
+// below its error at --tol 1e-13 (python/tests/test_error_bounds.py), 4 holds.
+constexpr double kRoundoffUnits = 4;
 
 // max-abs of a ω'-layout vector with translations divided by the characteristic length.
 double ScaledNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& col_scales) {
@@ -26,9 +30,16 @@ double ScaledNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& col_scales) {
 }  // namespace
 
 RowErrorEstimator::RowErrorEstimator(const ConstraintSystem& sys, int order)
-    : sys_(sys), order_(order), ext_poses_(sys.num_bodies()), ext_drivers_(sys.model().drivers.size()), col_scales_(DimensionlessColumnScales(sys)), seed_(order + 1), delta_(order + 1),
-      scale_(order + 1, 0.0) {
+    : sys_(sys), order_(order), ext_poses_(sys.num_bodies()), ext_drivers_(sys.model().drivers.size()), col_scales_(DimensionlessColumnScales(sys)), seed_(order + 1), roundoff_(order + 1), delta_(order + 1),
+      scale_(order + 1, 0.0), driver_scale_(order + 1, std::vector<double>(sys.model().drivers.size(), 0.0)),
+      row_driver_(sys.num_rows(), -1), unit_excess_(sys.num_bodies(), 0.0) {
   ext_phi_.resize(sys.num_rows());
+  const auto& entries = sys.entries();
+  for (size_t e = 0; e < entries.size(); ++e) {
+    if (!entries[e].from_driver) continue;
+    const int end = e + 1 < entries.size() ? entries[e + 1].first_row : sys.num_rows();
+    for (int r = entries[e].first_row; r < end; ++r) row_driver_[r] = entries[e].source;
+  }
   plus_state_ = std::make_unique<SystemState>(sys);
   minus_state_ = std::make_unique<SystemState>(sys);
   const int n = 6 * sys.num_bodies();
@@ -44,13 +55,16 @@ void RowErrorEstimator::Observe(const SystemState& s) {
     for (const BodyKinematics& b : s.bodies)
       m = std::max({m, b.r[k].cwiseAbs().maxCoeff() / col_scales_[0], b.w[k - 1].cwiseAbs().maxCoeff()});
     scale_[k] = std::max(scale_[k], m);
+    for (size_t d = 0; d < s.driver_values.size(); ++d)
+      driver_scale_[k][d] = std::max(driver_scale_[k][d], std::abs(s.driver_values[d].Derivative(k)));
   }
 }
 
-// The Newton correction y = Φ_q⁻¹(−Φ) (unscaled, ω' layout) and κ ≥ ‖J_s‖_F ‖J_s⁻¹x‖
-// for x the scaled residual's direction and for ŷ (one inverse-iteration step, its
-// result in probe_, unscaled). *y_norm: ‖y‖ scaled, max-abs.
-bool RowErrorEstimator::PositionError(KinematicsWorkspace& ws, const SystemState& s, double* kappa, double* y_norm) {
+// κ ≥ ‖J_s‖_F ‖J_s⁻¹x‖ for x the scaled residual's direction and for ŷ, y = Φ_q⁻¹(−Φ)
+// the Newton correction (one inverse-iteration step, its result in probe_, unscaled);
+// left_ = Φ_q⁻ᵀ probe_, whose signs are those of the direction Φ_q⁻¹ amplifies most.
+// pose_error_: the pose's error (below).
+bool RowErrorEstimator::PositionError(KinematicsWorkspace& ws, const SystemState& s, double* kappa) {
   if (rows_ != ws.active()) {
     rows_ = ws.active();
     jac_ = std::make_unique<SparseJacobian>(sys_, Formulation::Omega, rows_);
@@ -62,7 +76,6 @@ bool RowErrorEstimator::PositionError(KinematicsWorkspace& ws, const SystemState
   CalcPhi(sys_, s, &full_);
   for (size_t r = 0; r < rows_.size(); ++r) rhs_[r] = -full_[rows_[r]];
   if (!ws.factorization().SolveLinear(rhs_, &delta_[0]) || !delta_[0].allFinite()) return false;
-  *y_norm = ScaledNorm(delta_[0], col_scales_);
   const double residual_norm = rhs_.cwiseProduct(row_scales_).norm();
   const double y2 = delta_[0].cwiseQuotient(col_scales_).norm();
   double inverse = residual_norm > 0 ? y2 / residual_norm : 0;
@@ -73,10 +86,18 @@ bool RowErrorEstimator::PositionError(KinematicsWorkspace& ws, const SystemState
   if (!ws.factorization().SolveLinear(rhs_, &probe_) || !probe_.allFinite()) return false;
   inverse = std::max(inverse, probe_.cwiseQuotient(col_scales_).norm());
   *kappa = std::max(*kappa, norm * inverse);
+  if (!ws.factorization().SolveLinearTranspose(probe_, &left_) || !left_.allFinite()) return false;
   // The pose's actual error: Φ_q⁻¹Φ with Φ in long double at the stored pose (§9),
-  // the residual Newton in double cannot see below its own round-off.
+  // the residual Newton in double cannot see below its own round-off. Of a rigid pose:
+  // p normalized there. A stored p is unit only to round-off, and A(p) of §1.2 then
+  // stretches the body by |p|² − 1, which the residual would read as a displacement
+  // amplified up to κ (100× the piston's real error after the long-double phase);
+  // the stretch is propagated apart, as unit_excess_ (Moved).
   for (size_t b = 0; b < s.bodies.size(); ++b) {
     ext_poses_[b] = ExtendedPose::Of(s.bodies[b]);
+    const Real norm = ext_poses_[b].p.norm();
+    unit_excess_[b] = static_cast<double>(norm - 1);
+    ext_poses_[b].p /= norm;
     ext_poses_[b].A = RotationMatrix(ext_poses_[b].p);
   }
   EvalDriverValuesExtended(sys_.model(), s.t, &ext_drivers_);
@@ -105,7 +126,7 @@ void RowErrorEstimator::Moved(const SystemState& s, int upto, double sign, Syste
   for (size_t b = 0; b < out->bodies.size(); ++b) {
     BodyKinematics& bk = out->bodies[b];
     bk.r[0] += e * delta_[0].segment<3>(6 * b);
-    bk.p = QuatRetractBody(bk.p, e * delta_[0].segment<3>(6 * b + 3));
+    bk.p = QuatRetractBody(bk.p, e * delta_[0].segment<3>(6 * b + 3)) * (1 + e * stretch_ * unit_excess_[b]);
     bk.A = CalcA(bk.p);
     bk.AD[0] = bk.AB[0] = bk.A;
     for (int k = 1; k <= upto; ++k) {
@@ -121,6 +142,7 @@ void RowErrorEstimator::Moved(const SystemState& s, int upto, double sign, Syste
 void RowErrorEstimator::Propagate(KinematicsWorkspace& ws, const SystemState& s, int k) {
   // h: the largest move 1e-6 of its order's scale (linear, above the residuals' round-off).
   double extent = ScaledNorm(delta_[0], col_scales_);
+  for (double excess : unit_excess_) extent = std::max(extent, std::abs(stretch_ * excess));
   for (int j = 1; j < k; ++j) extent = std::max(extent, ScaledNorm(delta_[j], col_scales_) / std::max(scale_[j], 1e-300));
   h_ = extent > 0 ? 1e-6 / extent : 1e-6;
   OrderUnknowns(s, k);
@@ -138,7 +160,8 @@ void RowErrorEstimator::Propagate(KinematicsWorkspace& ws, const SystemState& s,
 }
 
 // seed_[k] = Φ_q⁻¹ R_k(s): the order-k solve's own error (its residual, evaluated with
-// the round-off that made it), k = 1..order, before the chain moves jac_ off s.
+// the round-off that made it), k = 1..order, before the chain moves jac_ off s; and
+// roundoff_[k] (RoundOff).
 bool RowErrorEstimator::SolveErrors(KinematicsWorkspace& ws, const SystemState& s) {
   for (int k = 1; k <= order_; ++k) {
     OrderUnknowns(s, k);
@@ -146,31 +169,50 @@ bool RowErrorEstimator::SolveErrors(KinematicsWorkspace& ws, const SystemState& 
     plus_.noalias() = jac_->matrix() * x_;
     for (size_t r = 0; r < rows_.size(); ++r) plus_[r] -= full_[rows_[r]];
     if (!ws.factorization().SolveLinear(plus_, &seed_[k]) || !seed_[k].allFinite()) return false;
+    if (!RoundOff(ws, k)) return false;
   }
   return true;
 }
 
-bool RowErrorEstimator::Raise(KinematicsWorkspace& ws, const SystemState& s, double condition, bool extended,
-                              double* bound) {
-  double kappa = condition, y = 0;
-  if (!PositionError(ws, s, &kappa, &y) || !SolveErrors(ws, s)) return false;
-  if (extended) y = 0;  // the double residual of a rounded long-double pose is round-off
-  // The pose's error ε = Φ_q⁻¹Φ(q̂) from Φ in long double (PositionError) or in double
-  // (−y): along the directions Φ_q nearly annihilates each residual can miss what the
-  // other sees, so the larger; doubled in e_0.
+// roundoff_[k] = Φ_q⁻¹ρ: the error a solve's round-off can leave, which the sampled
+// residual of seed_ does not see (it is evaluated with the same round-off). ρ_r is
+// kRoundoffUnits·u times the row's magnitudes — Σ_j |J_rj x_j| (the back-solve's
+// backward error) plus |RHS_r| plus, on a driver's row, the largest |f^(k)| along the
+// run (f^(k) can cancel to nearly 0 from terms of that size: the piston toward its
+// dead centre) — with the signs of left_, so that ρ lies along the direction Φ_q⁻¹
+// amplifies most. x_ and full_ hold order k.
+bool RowErrorEstimator::RoundOff(KinematicsWorkspace& ws, int k) {
+  rhs_.setZero();
+  const Eigen::SparseMatrix<double>& J = jac_->matrix();
+  for (int col = 0; col < J.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J, col); it; ++it) rhs_[it.row()] += std::abs(it.value() * x_[it.col()]);
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    const int driver = row_driver_[rows_[r]];
+    const double magnitude = rhs_[r] + std::abs(full_[rows_[r]]) + (driver >= 0 ? driver_scale_[k][driver] : 0.0);
+    rhs_[r] = kRoundoffUnits * kUnitRoundoff * magnitude * (left_[r] >= 0 ? 1 : -1);
+  }
+  return ws.factorization().SolveLinear(rhs_, &roundoff_[k]) && roundoff_[k].allFinite();
+}
+
+bool RowErrorEstimator::Raise(KinematicsWorkspace& ws, const SystemState& s, double condition, double* bound) {
+  double kappa = condition;
+  if (!PositionError(ws, s, &kappa) || !SolveErrors(ws, s)) return false;
+  // e_0: the pose's error ε, doubled, and never below what the long-double residual
+  // can resolve. The chain propagates 2ε itself (and twice the stretch): a floor such
+  // as 4uκ, had it been propagated along ε, would overstate the derivatives' error by
+  // the floor's ratio to ε (up to 2e4× on the N-four-bar, constraints.md §8).
   const double eps = ScaledNorm(pose_error_, col_scales_);
-  if (eps >= y) delta_[0] = pose_error_;
-  else delta_[0] = -delta_[0];
-  const double measured = std::max(eps, y);
-  const double e0 = std::max({kPositionSafety * measured, kappa * kExtendedRoundoff,
-                              extended ? 0.0 : kappa * 4 * kUnitRoundoff});
+  const double e0 = std::max(kPositionSafety * eps, kappa * kExtendedRoundoff);
   bound[0] = std::max(bound[0], e0);
-  if (measured > 0) delta_[0] *= e0 / measured;
+  delta_[0] = kPositionSafety * pose_error_;
+  stretch_ = kPositionSafety;
   for (int k = 1; k <= order_; ++k) {
     Propagate(ws, s, k);
-    delta_[k] += seed_[k];
+    // The round-off's direction is a worst case: taken to add to the propagated error.
+    if (delta_[k].dot(roundoff_[k]) < 0) roundoff_[k] = -roundoff_[k];
+    delta_[k] += seed_[k] + roundoff_[k];
     const double scale = scale_[k] > 0 ? scale_[k] : 1;
-    bound[k] = kDerivativeSafety * ScaledNorm(delta_[k], col_scales_) / scale + kappa * (e0 + 8 * kUnitRoundoff);
+    bound[k] = kDerivativeSafety * ScaledNorm(delta_[k], col_scales_) / scale + kappa * 8 * kUnitRoundoff;
   }
   return true;
 }

@@ -80,6 +80,7 @@ RunPlan PlanRun(const Model& model, const RunRequest& r) {
   a.keep_step_diagnostics = r.keep_step_diagnostics;
   a.on_limit_report = r.on_limit_report;
   a.on_contact_stop = r.on_contact_stop;
+  a.measure_every_row = r.error_bounds == ErrorBoundsChoice::Measured;
   a.interrupted = r.interrupted;
   DecideComputation(model, &plan);
   return plan;

@@ -35,6 +35,10 @@ enum class LimitAction { Stop, Report };
 /// What a run does at a first contact of a clearance output's bodies (`run --on-contact`):
 /// note it and go on (the default), or stop there.
 enum class ContactAction { Stop, Report };
+/// Which rows have their error bounds measured (`run --error-bounds`, Python's
+/// error_bounds): those near singular positions (auto, the default), or every row
+/// (measured: bounds that hold on every row, docs/constraints.md §8, at 1.5–2.9× the time).
+enum class ErrorBoundsChoice { Auto, Measured };
 
 struct RunRequest {
   // --- what the table shows ---
@@ -57,6 +61,7 @@ struct RunRequest {
   bool on_contact_stop = false;       // clearance outputs: stop at a first contact (default: note it)
   ContactAction contact_action() const { return on_contact_stop ? ContactAction::Stop : ContactAction::Report; }
   void set_contact_action(ContactAction a) { on_contact_stop = a == ContactAction::Stop; }
+  ErrorBoundsChoice error_bounds = ErrorBoundsChoice::Auto;  // rows whose bounds are measured
   InterruptPoll interrupted;          // polled between steps and runs: true stops (Interrupted)
 
   // The ranges (kMinTolerance, kMaxTolerance, order 0..kMaxOrder) and their messages are

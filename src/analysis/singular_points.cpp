@@ -12,6 +12,8 @@ namespace mechkin {
 namespace {
 
 constexpr int kDenseColumns = 1200;  // 200 bodies: the dense SVDs
+// The fit's sample spacing δ, as a fraction of the step (Locate, ClassifyAt).
+constexpr double kFitSpacing = 0.005;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 Eigen::MatrixXd ActiveScaledJacobian(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& rows) {
@@ -93,6 +95,13 @@ Eigen::VectorXd SingularityClassifier::SingularValues(const SystemState& s) cons
   return svd.singularValues().reverse();
 }
 
+const SystemState* SingularityClassifier::SolvedPast(double t_star, double t_end) const {
+  const Sample* latest = nullptr;
+  for (const Sample& s : samples_)
+    if (s.s.t > t_star && s.s.t <= t_end && WellDetermined(s) && (!latest || s.s.t > latest->s.t)) latest = &s;
+  return latest ? &latest->s : nullptr;
+}
+
 // A tight solve at t from the Taylor prediction off the nearest sample (the branch
 // the run is on), with its derivatives for the next predictions and its singular values.
 bool SingularityClassifier::Probe(double t, const Sample** out) {
@@ -101,7 +110,7 @@ bool SingularityClassifier::Probe(double t, const Sample** out) {
   const Sample* from = &samples_[0];
   for (const Sample& s : samples_) {
     if (s.s.t == t) { *out = &s; return true; }
-    if (s.sigma[0] >= 1e-4 * s.sigma[s.sigma.size() - 1] && std::abs(s.s.t - t) < std::abs(from->s.t - t)) from = &s;
+    if (WellDetermined(s) && std::abs(s.s.t - t) < std::abs(from->s.t - t)) from = &s;
   }
   Sample next{from->s, Eigen::VectorXd()};
   PredictPose(t - from->s.t, 3, &next.s);
@@ -158,7 +167,7 @@ double SingularityClassifier::FitZero(double center, double delta, int corank, b
 // other branches pass through it); they are skipped — the fit needs none of them.
 double SingularityClassifier::Locate(double ta, double tb, double step, int* corank) {
   constexpr int kScan = 8;
-  const double delta = 0.005 * step;
+  const double delta = kFitSpacing * step;
   double best_t = ta, best = samples_[0].sigma[0];
   for (int m = 1; m <= kScan; ++m) {
     const Sample* s = nullptr;
@@ -209,21 +218,45 @@ SingularClassification SingularityClassifier::Classify(const SystemState& base, 
   if (!std::isfinite(t)) return out;
   out.t = t;
   out.corank = corank;
-  out.kind = ClassifyAt(t, corank, &out.branches, &out.branches_exact);
+  out.kind = ClassifyAt(t, kFitSpacing * step, corank, &out.branches, &out.branches_exact);
   for (const Jet& j : pose_.driver_values) out.driver_values.push_back(j.c[0]);
   return out;
 }
 
-// At the located t: the pose (Taylor prediction from the nearest sample, well inside
-// its accuracy), the null spaces U0, V0 of the scaled Φ_q, the fold test U0ᵀν ≠ 0 and
-// the second-order tangent cone U0ᵀγ(w + ρV0α) = 0 (docs/singularities.md §2–§3).
-SingularKind SingularityClassifier::ClassifyAt(double t, int corank, int* branches, bool* exact) {
+// pose_ at t: the Taylor prediction from a well-determined sample at least δ/2 away
+// (the fit's own, at ±δ, ±2δ) — one closer to the position may have converged to
+// another assembly or be fixed only to √(residual) along the null space (Newton
+// stalls there): the N-four-bar, N = 2, had one 1.4e-11 s from t* with σ_min 0.009.
+// Of the eight nearest such samples the prediction whose k vanishing singular values
+// are smallest is kept: the nearest alone left them at 1e-13 for N = 3 (360 steps),
+// too far from q* for the tangent count, where a sample farther off gave 1e-17.
+void SingularityClassifier::PoseAt(double t, double delta, int corank) {
+  constexpr int kCandidates = 8;
+  std::vector<const Sample*> near;
+  for (const Sample& s : samples_)
+    if (WellDetermined(s) && std::abs(s.s.t - t) >= 0.5 * delta) near.push_back(&s);
+  auto closer = [t](const Sample* a, const Sample* b) { return std::abs(a->s.t - t) < std::abs(b->s.t - t); };
+  const size_t keep = std::min<size_t>(kCandidates, near.size());
+  std::partial_sort(near.begin(), near.begin() + keep, near.end(), closer);
+  near.resize(keep);
+  if (near.empty()) near.push_back(&samples_[0]);
+  double best = std::numeric_limits<double>::infinity();
+  for (const Sample* from : near) {
+    SystemState candidate = from->s;
+    PredictPose(t - from->s.t, 3, &candidate);
+    EvalDriverFunctions(ws_.system().model(), t, &candidate);
+    const Eigen::VectorXd sv = SingularValues(candidate);  // ascending
+    const double vanishing = sv[std::min<int>(corank, sv.size()) - 1] / sv[sv.size() - 1];
+    if (!(vanishing >= best)) best = vanishing, pose_ = candidate;
+  }
+}
+
+// At the located t: the pose (PoseAt), the null spaces U0, V0 of the scaled Φ_q, the
+// fold test U0ᵀν ≠ 0 and the second-order tangent cone U0ᵀγ(w + ρV0α) = 0
+// (docs/singularities.md §2–§3).
+SingularKind SingularityClassifier::ClassifyAt(double t, double delta, int corank, int* branches, bool* exact) {
   const ConstraintSystem& sys = ws_.system();
-  const Sample* from = &samples_[0];
-  for (const Sample& s : samples_) if (std::abs(s.s.t - t) < std::abs(from->s.t - t)) from = &s;
-  pose_ = from->s;
-  PredictPose(t - from->s.t, 3, &pose_);
-  EvalDriverFunctions(sys.model(), t, &pose_);
+  PoseAt(t, delta, corank);
   const std::vector<int>& rows = ws_.active();
   const Eigen::MatrixXd J = ActiveScaledJacobian(sys, pose_, rows);
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);

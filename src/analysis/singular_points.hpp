@@ -49,22 +49,31 @@ class SingularityClassifier {
  public:
   SingularityClassifier(const ConstraintSystem& sys, const std::vector<int>& active);
   /// Looks for a zero of the smallest singular values between ta (`base`, solved on
-  /// the run's branch) and tb, probing at most a fraction of `step` beyond.
+  /// the run's branch) and tb; where σ_1 still falls at an end the search walks on,
+  /// up to 5 (tb − ta) beyond it.
   SingularClassification Classify(const SystemState& base, double tb, double step);
   /// The pose at the located t (after Classify returned Fold, Bifurcation or UniquePassage).
   const SystemState& pose() const { return pose_; }
   const std::vector<int>& active() const { return ws_.active(); }
+  /// After Classify: the latest well-determined pose it solved on the run's branch in
+  /// (t_star, t_end] (tight, with derivatives to order 3), or nullptr when it solved none.
+  const SystemState* SolvedPast(double t_star, double t_end) const;
 
  private:
   struct Sample {
     SystemState s;
     Eigen::VectorXd sigma;  // singular values of the scaled Φ_q, ascending
   };
+  /// Its pose and derivatives are meaningful: σ_min ≥ 1e-4 σ_max (closer to the
+  /// singular position the velocities are amplified by 1/σ_min and the pose is fixed
+  /// only to √(residual) along the null space).
+  static bool WellDetermined(const Sample& s) { return s.sigma[0] >= 1e-4 * s.sigma[s.sigma.size() - 1]; }
   bool Probe(double t, const Sample** out);
   double Locate(double ta, double tb, double step, int* corank);
   double FitZero(double center, double delta, int corank, bool* ok);
   int CountVanishing(double center, double delta, bool* ok);
-  SingularKind ClassifyAt(double t, int corank, int* branches, bool* exact);
+  void PoseAt(double t, double delta, int corank);
+  SingularKind ClassifyAt(double t, double delta, int corank, int* branches, bool* exact);
   Eigen::VectorXd SingularValues(const SystemState& s) const;
 
   KinematicsWorkspace ws_;

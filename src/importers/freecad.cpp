@@ -1,10 +1,16 @@
 // FreeCAD 1.x Assembly (docs/import.md "FreeCAD Assembly"): the .FCStd zip's
-// Document.xml. Objects with a JointType are the joints; the parts are the objects
-// named first in their Reference1/Reference2 sub-paths ("Rod.Face3"), at their saved
-// Placement; a joint's frame on each part is the referenced object's global placement
-// × Placement1 (Placement2) × Offset1 (Offset2). Objects with an ObjectToGround fix
-// their part to the ground. Saved placements need not satisfy the joints: the markers
-// are assembled. Joint kinds mechkin has no joint for are named with what they need.
+// Document.xml, read as the Assembly workbench writes it. Objects with a JointType
+// (an enumeration: its index into the file's own CustomEnumList of names when given,
+// else into FreeCAD's list) are the joints; Reference1/Reference2 are
+// [root, ["Part.Body.Face3", "Part.Body.Vertex2"]]: the moving part is the first
+// object of the path inside the assembly (document groups skipped), the joint frame
+// is Placement1 (Placement2) relative to the last object before the element — the
+// offsets Offset1/2 are already in it (JointObject.findPlacement), not applied again.
+// A part's placement is its Placement, an App::Link's its LinkPlacement. Objects with
+// an ObjectToGround fix their part to the ground; Activated=false and Suppressed joints
+// are skipped with a warning. Saved placements need not satisfy the joints: the
+// markers are assembled. Joint kinds mechkin has no joint for are named with what
+// they need.
 #include <zip.h>
 
 #include <cstring>
@@ -57,9 +63,11 @@ const FcJoint kFcJoints[] = {
     {"Cylindrical", true, Kind::Cylindrical, ""},
     {"Slider", true, Kind::Prismatic, ""},
     {"Ball", true, Kind::Spherical, ""},
-    {"Distance", false, Kind::Fixed, "a distance between two vertices is a distance link; other elements need "
-                                     "point-plane or plane-plane distance constraints, which the format lacks"},
-    {"Parallel", false, Kind::Fixed, "a constraint keeping two axes parallel (two dot-1 equations), not a joint type yet"},
+    {"Distance", false, Kind::Fixed,
+     "a distance between two vertices is a distance link; other elements need "
+     "point-plane or plane-plane distance constraints, which the format lacks"},
+    {"Parallel", false, Kind::Fixed,
+     "a constraint keeping two axes parallel (two dot-1 equations), not a joint type yet"},
     {"Perpendicular", false, Kind::Fixed, "a constraint keeping two axes perpendicular (one dot-1 equation)"},
     {"Angle", false, Kind::Fixed, "a constraint fixing the angle between two axes (one dot-1 equation)"},
     {"RackPinion", false, Kind::Fixed, "the revolute and prismatic joints it couples: write a rack_pinion coupler"},
@@ -83,6 +91,9 @@ class FcReader {
   }
   bool PlacementOf(const XMLElement* prop, Pose* pose) const;
   Pose ObjectPlacement(const std::string& object) const;
+  bool BoolProp(const std::string& object, const char* name, bool otherwise) const;
+  const FcJoint* JointTypeOf(const std::string& object);
+  bool IsMovingPart(const std::string& object) const;
   std::string NameOf(const std::string& object) const;
   bool Side(const std::string& joint, int k, std::string* part, Pose* frame);
   std::string AddPart(const std::string& object, const Pose& global);
@@ -91,6 +102,7 @@ class FcReader {
   Graph* g_;
   std::map<std::string, Props> props_;
   std::map<std::string, const XMLElement*> objects_;
+  std::map<std::string, std::string> types_;  // object → its type in <Objects>
   std::vector<std::string> order_;
   std::map<std::string, std::string> part_link_;  // part object → link name
 };
@@ -110,8 +122,45 @@ bool FcReader::PlacementOf(const XMLElement* prop, Pose* pose) const {
 
 Pose FcReader::ObjectPlacement(const std::string& object) const {
   Pose p;
-  PlacementOf(Prop(object, "Placement"), &p);
+  const XMLElement* link = Prop(object, "LinkPlacement");  // an App::Link's own placement
+  PlacementOf(link ? link : Prop(object, "Placement"), &p);
   return p;
+}
+
+bool FcReader::BoolProp(const std::string& object, const char* name, bool otherwise) const {
+  const XMLElement* prop = Prop(object, name);
+  const XMLElement* b = prop ? prop->FirstChildElement("Bool") : nullptr;
+  if (!b || !b->Attribute("value")) return otherwise;
+  return std::strcmp(b->Attribute("value"), "true") == 0;
+}
+
+// JointType: an index into the file's CustomEnumList when it has one (FreeCAD writes
+// the list: JointObject sets it from Python), else into FreeCAD's list; nullptr after an error.
+const FcJoint* FcReader::JointTypeOf(const std::string& object) {
+  const XMLElement* e = objects_.at(object);
+  const XMLElement* type = Prop(object, "JointType");
+  const XMLElement* index = type ? type->FirstChildElement("Integer") : nullptr;
+  int k = -1;
+  if (!index || index->QueryIntAttribute("value", &k) != tinyxml2::XML_SUCCESS)
+    return g_->Error(type ? type : e, "JointType holds no <Integer value>", "re-save the file"), nullptr;
+  std::vector<std::string> names;
+  const XMLElement* list = type->FirstChildElement("CustomEnumList");
+  for (const XMLElement* n = list ? list->FirstChildElement("Enum") : nullptr; n; n = n->NextSiblingElement("Enum"))
+    names.push_back(n->Attribute("value") ? n->Attribute("value") : "");
+  if (names.empty())
+    for (const FcJoint& t : kFcJoints) names.push_back(t.name);
+  if (k < 0 || k >= static_cast<int>(names.size()))
+    return g_->Error(index,
+                     "JointType " + std::to_string(k) + " is not in its list of " + std::to_string(names.size()) +
+                         " joint types",
+                     "re-save the file"),
+           nullptr;
+  for (const FcJoint& t : kFcJoints)
+    if (names[k] == t.name) return &t;
+  g_->Error(index, "JointType '" + names[k] + "' is not one of FreeCAD 1.x's joint types",
+            "types: Fixed, Revolute, Cylindrical, Slider, Ball, Distance, Parallel, Perpendicular, Angle, RackPinion, "
+            "Screw, Gears, Belt");
+  return nullptr;
 }
 
 std::string FcReader::NameOf(const std::string& object) const {
@@ -132,6 +181,13 @@ std::string FcReader::AddPart(const std::string& object, const Pose& global) {
   return part_link_[object] = l.name;
 }
 
+// An object that can be a moving part: not an assembly or a group.
+bool FcReader::IsMovingPart(const std::string& object) const {
+  auto t = types_.find(object);
+  const std::string type = t == types_.end() ? "" : t->second;
+  return type != "Assembly::AssemblyObject" && type != "App::DocumentObjectGroup" && type != "Assembly::JointGroup";
+}
+
 // Side k (1, 2) of a joint: its part and the joint frame in it.
 bool FcReader::Side(const std::string& joint, int k, std::string* part, Pose* frame) {
   const std::string n = std::to_string(k);
@@ -150,36 +206,48 @@ bool FcReader::Side(const std::string& joint, int k, std::string* part, Pose* fr
   }
   const std::string root = link->Attribute("name");
   if (!objects_.count(root)) return g_->Error(ref, "Reference" + n + ": no object '" + root + "'"), false;
-  Pose global = ObjectPlacement(root), part_global = global;
-  *part = root;
-  for (size_t c = 0; c < path.size() && objects_.count(path[c]); ++c) {
-    global = global * ObjectPlacement(path[c]);
-    if (c == 0) *part = path[c], part_global = global;
+  // The moving part: the first object of [root, path…] after the assembly that is not a
+  // document group (UtilsAssembly.getMovingPart); the JCS is relative to the last object
+  // before the element (the global placements multiplied along the path).
+  std::vector<std::string> names{root};
+  for (const std::string& c : path)
+    if (objects_.count(c)) names.push_back(c);
+  size_t first = 0;
+  for (size_t c = 0; c < names.size(); ++c)
+    if (types_.count(names[c]) && types_.at(names[c]) == "Assembly::AssemblyObject") first = c + 1;
+  Pose global, part_global;
+  part->clear();
+  for (size_t c = 0; c < names.size(); ++c) {
+    global = global * ObjectPlacement(names[c]);
+    if (c >= first && part->empty() && IsMovingPart(names[c])) *part = names[c], part_global = global;
   }
-  Pose jcs, offset;
+  if (part->empty())
+    return g_->Error(ref, "Reference" + n + " names no part ('" + root + "." + (text ? text : "") + "')",
+                     "attach the joint to a part of the assembly"),
+           false;
+  Pose jcs;
   if (!PlacementOf(Prop(joint, ("Placement" + n).c_str()), &jcs))
     return g_->Error(place, "the joint has no Placement" + n, "re-create the joint in FreeCAD"), false;
-  PlacementOf(Prop(joint, ("Offset" + n).c_str()), &offset);
   const std::string name = AddPart(*part, part_global);
-  *frame = part_global.Inverse() * global * jcs * offset;
+  *frame = part_global.Inverse() * global * jcs;  // Offset_k is in Placement_k already
   *part = name;
   return true;
 }
 
 void FcReader::ReadJoint(const std::string& object) {
   const XMLElement* e = objects_.at(object);
-  const XMLElement* type = Prop(object, "JointType");
-  const XMLElement* index = type ? type->FirstChildElement("Integer") : nullptr;
-  int k = -1;
-  if (!index || index->QueryIntAttribute("value", &k) != tinyxml2::XML_SUCCESS || k < 0 || k >= 13)
-    return g_->Error(type ? type : e, "JointType is not one of FreeCAD's 13 joint types", "re-save the file");
-  const FcJoint& t = kFcJoints[k];
-  const XMLElement* off = Prop(object, "Suppressed");
-  const XMLElement* b = off ? off->FirstChildElement("Bool") : nullptr;
-  if (b && b->Attribute("value") && !std::strcmp(b->Attribute("value"), "true"))
-    return g_->Warn(e, std::string("suppressed ") + t.name + " joint: not imported");
+  const FcJoint* type = JointTypeOf(object);
+  if (!type) return;
+  const FcJoint& t = *type;
+  if (BoolProp(object, "Suppressed", false))
+    return g_->Warn(e, "suppressed " + std::string(t.name) + " joint '" + NameOf(object) + "': not imported");
+  if (!BoolProp(object, "Activated", true))
+    return g_->Warn(
+        e, std::string(t.name) + " joint '" + NameOf(object) + "' is not activated (Activated=false): not imported",
+        "activate it in FreeCAD to import it");
   if (!t.supported)
-    return g_->Error(e, std::string("FreeCAD's ") + t.name + " joint is not supported", std::string("it would need ") + t.needs);
+    return g_->Error(e, std::string("FreeCAD's ") + t.name + " joint is not supported",
+                     std::string("it would need ") + t.needs);
   Joint j;
   j.name = NameOf(object), j.kind = t.kind, j.place = g_->PlaceOf(e);
   if (!Side(object, 1, &j.parent, &j.in_parent) || !Side(object, 2, &j.child, &j.in_child)) return;
@@ -189,8 +257,9 @@ void FcReader::ReadJoint(const std::string& object) {
   const Vec3 z2 = g_->FindLink(j.child)->world.R * j.in_child.R.col(2);
   if (j.kind != Kind::Spherical && j.kind != Kind::Fixed && z1.dot(z2) < 0) {
     j.in_child.R = j.in_child.R * AxisAngle(Vec3::UnitX(), M_PI);
-    g_->Warn(e, "the joint's two frames have opposite z axes as saved: the second is turned over (a half turn "
-                "about its x) so that both share the axis");
+    g_->Warn(e,
+             "the joint's two frames have opposite z axes as saved: the second is turned over (a half turn "
+             "about its x) so that both share the axis");
   }
   j.axis = Vec3::UnitZ();
   j.axis2 = Vec3::UnitX();
@@ -202,12 +271,16 @@ void FcReader::Read(const XMLElement* document) {
   const XMLElement* data = document->FirstChildElement("ObjectData");
   if (!objects || !data) return g_->Error(document, "a FreeCAD Document.xml holds <Objects> and <ObjectData>");
   for (const XMLElement* o = objects->FirstChildElement("Object"); o; o = o->NextSiblingElement("Object"))
-    if (o->Attribute("name")) order_.push_back(o->Attribute("name"));
+    if (o->Attribute("name")) {
+      order_.push_back(o->Attribute("name"));
+      types_[o->Attribute("name")] = o->Attribute("type") ? o->Attribute("type") : "";
+    }
   for (const XMLElement* o = data->FirstChildElement("Object"); o; o = o->NextSiblingElement("Object")) {
     if (!o->Attribute("name")) continue;
     objects_[o->Attribute("name")] = o;
     const XMLElement* ps = o->FirstChildElement("Properties");
-    for (const XMLElement* p = ps ? ps->FirstChildElement("Property") : nullptr; p; p = p->NextSiblingElement("Property"))
+    for (const XMLElement* p = ps ? ps->FirstChildElement("Property") : nullptr; p;
+         p = p->NextSiblingElement("Property"))
       if (p->Attribute("name")) props_[o->Attribute("name")][p->Attribute("name")] = p;
   }
   g_->AddLink(Link{"ground", Pose{}, std::nullopt, Place{}, true}, nullptr);
@@ -226,7 +299,8 @@ void FcReader::Read(const XMLElement* document) {
   }
   for (const std::string& o : order_)
     if (objects_.count(o) && Prop(o, "JointType")) ReadJoint(o);
-  if (g_->joints.empty()) g_->Error(document, "the document has no assembly joints", "give a FreeCAD 1.x Assembly file");
+  if (g_->joints.empty())
+    g_->Error(document, "the document has no assembly joints", "give a FreeCAD 1.x Assembly file");
 }
 
 }  // namespace

@@ -76,6 +76,7 @@ TEST(LimitOfMotion, SpatialRcccInputStopsAt90Degrees) {
     ASSERT_TRUE(rep.limit.has_value()) << function << ": " << rep.message;
     EXPECT_FALSE(rep.singular.has_value()) << function;
     EXPECT_TRUE(rep.limit->fold) << function;
+    EXPECT_TRUE(rep.notes.empty()) << function << ": " << rep.notes.front();  // no passage claimed on the way
     EXPECT_NEAR(rep.limit->driver_values[0], M_PI / 2, 1e-9) << function;
     EXPECT_EQ(rep.message.rfind("limit of motion at t = ", 0), 0u) << rep.message;
     EXPECT_NE(rep.message.find("driver `motor` = 90 deg"), std::string::npos) << rep.message;

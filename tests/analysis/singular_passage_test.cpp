@@ -2,6 +2,7 @@
 // docs/singularities.md), on the IFToMM A02 N-four-bar (tests/n_four_bar.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -22,10 +23,11 @@ struct Row {
   std::vector<double> coupler_x, coupler_y;  // coupler frame origins (the left tips)
 };
 
-AnalysisReport RunRows(const nlohmann::json& doc, int order, std::vector<Row>* rows) {
+AnalysisReport RunRows(const nlohmann::json& doc, int order, std::vector<Row>* rows, double tolerance = 0) {
   AnalysisOptions opt;
   opt.order = order;
   opt.predictor_order = std::min(3, order);
+  if (tolerance > 0) opt.tolerance = tolerance;
   const Model m = testing_files::FromJson(doc);
   return RunKinematicAnalysis(m, opt, [&](const SystemState& s, const StepDiagnostics&) {
     Row r{s.t, {}, {}, {}};
@@ -115,6 +117,64 @@ INSTANTIATE_TEST_SUITE_P(BothDirections, NFourBarAtMinus90,
 INSTANTIATE_TEST_SUITE_P(BothDirections, NFourBarAtPlus90,
                          ::testing::Combine(::testing::Values(1, 2, 3, 4),
                                             ::testing::Values(kUpThroughPlus90, kDownThroughPlus90)));
+
+// Runs that a scan (N 1–4, four start angles, seven rates, three step counts, two
+// tolerances: 672 runs) once got wrong: the bifurcation passed silently (N even: the
+// one-step κ lagged, the position was located too far ahead, or classified from a
+// pose on another assembly) or the unique passage stopped the run (N = 3: classified
+// again from a pose 3e-6 s from it; in 360 steps the step across it diverged and read
+// as a limit of motion). Each must end as the closed form says: the first
+// +90° stops the run, a −90° before it is noted and passed.
+struct Scanned {
+  int n, steps;
+  double theta0, rate, tolerance;  // tolerance 0: the default
+};
+
+class FormerlyMisjudged : public ::testing::TestWithParam<Scanned> {};
+
+TEST_P(FormerlyMisjudged, EndsAsTheClosedFormSays) {
+  const Scanned c = GetParam();
+  std::vector<Row> rows;
+  const AnalysisReport rep = RunRows(NFourBar(c.n, c.theta0, c.rate, c.steps), 3, &rows, c.tolerance);
+  // Crank angles θ0 + rate·t in (0, 1]: the first at +90° (mod 360°) stops the run.
+  auto first_at = [&](double target) {
+    double first = 2;
+    for (int k = -3; k <= 3; ++k) {
+      const double t = (target + 360 * k - c.theta0) / c.rate;
+      if (t > 0 && t <= 1) first = std::min(first, t);
+    }
+    return first;
+  };
+  const double t_bifurcation = first_at(90), t_passage = first_at(-90);
+  EXPECT_FALSE(rep.limit.has_value()) << rep.message;
+  if (t_bifurcation <= 1) {
+    ASSERT_EQ(rep.stop, StopKind::SingularPosition) << rep.message;
+    ASSERT_TRUE(rep.singular.has_value());
+    EXPECT_NEAR(rep.singular->t, t_bifurcation, 1e-9) << rep.message;
+  } else {
+    EXPECT_TRUE(rep.complete) << rep.message;
+  }
+  if (t_passage < t_bifurcation) {
+    ASSERT_FALSE(rep.notes.empty()) << rep.message;
+    EXPECT_NE(rep.notes[0].find("unique passage"), std::string::npos) << rep.notes[0];
+    EXPECT_NEAR(NoteTime(rep.notes[0]), t_passage, 1e-9) << rep.notes[0];
+  }
+  // Every row on the parallelogram branch: each rocker turns as the crank.
+  for (const Row& r : rows)
+    for (int i = 0; i <= c.n; ++i)
+      EXPECT_NEAR(std::remainder(r.rocker_turn[i] - c.rate * r.t * M_PI / 180, 2 * M_PI), 0, 1e-9) << r.t;
+  EXPECT_GT(rows.size(), static_cast<size_t>(c.steps / 2));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scan, FormerlyMisjudged,
+                         ::testing::Values(Scanned{4, 360, 180, -97, 1e-13}, Scanned{2, 50, -150, 359, 0},
+                                           Scanned{2, 50, -150, 359, 1e-13}, Scanned{3, 50, 0, -97, 0},
+                                           Scanned{3, 100, 180, 97, 0}, Scanned{3, 50, 37, -181, 0},
+                                           Scanned{3, 360, 37, -181, 0}, Scanned{3, 360, 37, -181, 1e-13}),
+                         [](const ::testing::TestParamInfo<Scanned>& info) {
+                           return "N" + std::to_string(info.param.n) + "_" + std::to_string(info.param.steps) + "steps_" +
+                                  std::to_string(info.index);
+                         });
 
 // Item 9: the slider-crank with crank = rod (20 mm each, no offset) in 100 steps, its
 // change point at t = 0.25 s exactly on a row: every order stops there with

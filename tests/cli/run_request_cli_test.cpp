@@ -128,5 +128,33 @@ TEST(RunRequestCli, OrderOneWithInertiaRunsAndShowsTheForcesOfOrderTwo) {
   EXPECT_NE(html.find(".effort"), std::string::npos);
 }
 
+// `--error-bounds measured` measures every row's bounds: the motion's cells are the
+// default run's to the digit, the error_bound columns differ (the four-bar's regular
+// rows take measured values instead of κ's); an unknown choice exits 2, nothing written.
+TEST(RunRequestCli, MeasuredErrorBoundsChangeOnlyTheBoundColumns) {
+  const std::string file = kSrc + "/mechanisms/planar-four-bar.json";
+  ASSERT_EQ(Mechkin("run " + file + " -o " + Temp("auto.csv")).code, 0);
+  ASSERT_EQ(Mechkin("run " + file + " --error-bounds measured -o " + Temp("measured.csv")).code, 0);
+  const auto a = ReadCsv(Temp("auto.csv")), m = ReadCsv(Temp("measured.csv"));
+  ASSERT_EQ(a.size(), m.size());
+  int bound_columns = 0, differing = 0;
+  for (const auto& [name, cells] : a) {
+    ASSERT_TRUE(m.count(name)) << name;
+    if (name.rfind("error_bound", 0) != 0) {
+      EXPECT_EQ(cells, m.at(name)) << name;
+      continue;
+    }
+    ++bound_columns;
+    for (size_t i = 0; i < cells.size(); ++i) differing += cells[i] != m.at(name)[i];
+  }
+  EXPECT_EQ(bound_columns, 4);
+  EXPECT_GT(differing, 100);
+  std::remove(Temp("never.csv").c_str());
+  const Result bad = Mechkin("run " + file + " --error-bounds sometimes -o " + Temp("never.csv"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.out.find("--error-bounds"), std::string::npos) << bad.out;
+  EXPECT_FALSE(std::ifstream(Temp("never.csv")).good());
+}
+
 }  // namespace
 }  // namespace mechkin

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <zip.h>
 
 #include <cmath>
 #include <cstdio>
@@ -116,6 +117,23 @@ inline double PathDistance(const std::vector<std::array<double, 3>>& a, const st
   for (size_t k = 0; k < std::min(a.size(), b.size()); ++k)
     worst = std::max(worst, std::hypot(a[k][0] - b[k][0], a[k][1] - b[k][1], a[k][2] - b[k][2]));
   return worst;
+}
+
+// An .FCStd archive holding `document` as its Document.xml (and a GuiDocument.xml).
+inline std::string Fcstd(const std::string& name, const std::string& document) {
+  const std::string path = TempFile(name, "");
+  std::remove(path.c_str());
+  int code = 0;
+  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &code);
+  EXPECT_NE(z, nullptr);
+  static std::vector<std::string> keep;  // the buffers live until zip_close
+  keep.push_back(document);
+  keep.push_back("<?xml version='1.0'?><Document/>");
+  zip_file_add(z, "Document.xml", zip_source_buffer(z, keep[keep.size() - 2].data(), keep[keep.size() - 2].size(), 0),
+               ZIP_FL_OVERWRITE);
+  zip_file_add(z, "GuiDocument.xml", zip_source_buffer(z, keep.back().data(), keep.back().size(), 0), ZIP_FL_OVERWRITE);
+  EXPECT_EQ(zip_close(z), 0);
+  return path;
 }
 
 /// Imports XML text of `format` in process.

@@ -46,6 +46,10 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
                   "Where the bodies of a clearance output come into contact: report (default; the first contact "
                   "located and noted on stderr) or stop (the run stops there)")
       ->check(CLI::IsMember(NamesOf<ContactAction>()));
+  cmd->add_option("--error-bounds", o->error_bounds,
+                  "Rows whose error_bound columns are measured: auto (default; near singular positions, the others "
+                  "from the condition estimate) or measured (every row: bounds that hold, 1.5-2.9x the time)")
+      ->check(CLI::IsMember(NamesOf<ErrorBoundsChoice>()));
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_flag("--quiet", o->quiet,
                 "No notes on stderr: redundant equations set aside, undetermined reactions, singular passages "
@@ -75,6 +79,7 @@ RunRequest RunOptions::Request() const {
   ContactAction at_contact = ContactAction::Report;
   Parse(on_contact, &at_contact);  // CLI11 admitted only NamesOf<ContactAction>()
   r.set_contact_action(at_contact);
+  Parse(error_bounds, &r.error_bounds);  // CLI11 admitted only NamesOf<ErrorBoundsChoice>()
   r.keep_step_diagnostics = false;  // streamed: the table's diagnostic columns carry them
   return r;
 }

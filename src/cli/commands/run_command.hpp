@@ -29,6 +29,7 @@ struct RunOptions {
   std::vector<std::string> sensitivity;  // --sensitivity: parameters to differentiate by
   std::string on_limit = "stop";         // --on-limit stop|report: at a joint's limits
   std::string on_contact = "report";     // --on-contact stop|report: at a clearance output's first contact
+  std::string error_bounds = "auto";     // --error-bounds auto|measured: rows whose bounds are measured
   ForeignOptions foreign;                // --drive, --span: for an imported file
   /// The whole request: `request` with the selections, forces and sensitivities.
   RunRequest Request() const;
