@@ -169,8 +169,18 @@
       body.setAttribute("data-live-move-" + i, body.getAttribute("data-live-state") + ";" + traceText());
     });
     if (moves.length) document.getElementById("export").textContent = csv();
+    bench();
     body.setAttribute("data-live-ready", "1");
   }, function (e) { fail("the WebAssembly module did not start: " + e); });
+  // #bench=K (tools/live_benchmark.py): K re-solves as a slider makes them — the first
+  // parameter alternately 1 % above and at its value, each recompiled, solved and
+  // redrawn. The benchmark times the page in wall-clock time against K = 0 (headless
+  // Chromium's virtual time stops performance.now()).
+  function bench() {
+    const k = Number(new URLSearchParams(location.hash.slice(1)).get("bench") || 0), p = LIVE.parameters[0];
+    for (let i = 0; p && i < k; ++i) setParameter(p.name, i % 2 ? p.value : p.value * 1.01);
+    if (k) body.setAttribute("data-live-bench", String(k));
+  }
   // The first trace (coupler curve) as drawn: its body point at every frame.
   function traceText() {
     const tr = D.traces[0];
