@@ -5,7 +5,7 @@
 #   default: only what the library, the CLI and the Python package need
 #            (tests and benchmarks are not configured);
 #   --with-tests: also the test, benchmark, browser and sanitizer toolchain
-#            (GoogleTest, Google Benchmark, pytest, Chromium, clang, Simbody, ...),
+#            (GoogleTest, Google Benchmark, pytest, Chromium, clang, Simbody, emscripten, ...),
 #            and the build includes tests and benchmarks (tools/test.sh uses this).
 # Default build dir: build (Release). Runs as root on Debian 12; uses sudo otherwise.
 set -euo pipefail
@@ -17,7 +17,8 @@ main_pkgs=(g++ cmake ninja-build libeigen3-dev libceres-dev libsuitesparse-dev n
            libtinyxml2-dev libzip-dev libhdf5-dev
            python3 python3-dev pybind11-dev python3-numpy python3-pandas libjs-three)
 test_pkgs=(libgtest-dev libgmock-dev libbenchmark-dev python3-jsonschema python3-pytest python3-pil python3-yaml git
-           python3-dask python3-distributed python3-h5py chromium clang libclang-rt-14-dev libsimbody-dev)
+           python3-dask python3-distributed python3-h5py chromium clang libclang-rt-14-dev libsimbody-dev
+           emscripten)
 # --print-packages main|tests: the list only (tools/install_times.sh times them on a fresh system).
 if [ "$with_tests" -eq 0 ] && [ "${build}" = "--print-packages" ]; then
   if [ "${1:-main}" = "tests" ]; then echo "${test_pkgs[@]}"; else echo "${main_pkgs[@]}"; fi
@@ -37,7 +38,9 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 cd "$here"
 if [ "$with_tests" -eq 1 ]; then
-  suite=(-DMECHKIN_BUILD_TESTS=ON -DMECHKIN_BUILD_BENCHMARKS=ON)
+  # The live page's WebAssembly module too (emscripten, issue 30): its browser test is
+  # part of the suite, so a missing em++ stops the configure instead of skipping it.
+  suite=(-DMECHKIN_BUILD_TESTS=ON -DMECHKIN_BUILD_BENCHMARKS=ON -DMECHKIN_LIVE=ON)
 else
   suite=(-DMECHKIN_BUILD_TESTS=OFF -DMECHKIN_BUILD_BENCHMARKS=OFF)
 fi

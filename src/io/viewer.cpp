@@ -14,6 +14,7 @@
 namespace mechkin {
 
 extern const char kViewerJs[];
+extern const char kLiveJs[];
 
 namespace {
 
@@ -583,7 +584,13 @@ bool WriteViewerHtml(const Model& model, const Motion& motion, const SceneOption
   file.Write("<script>" + ScriptSafe(three) + "</script>\n<script>" + ScriptSafe(orbit) + "</script>\n");
   file.Write("<script>window.MECHKIN_DATA=" + JsonScriptSafe(SceneData(model, motion, options)) + ";</script>\n");
   file.Write("<script>document.getElementById('title').textContent=window.MECHKIN_DATA.name;</script>\n");
-  file.Write("<script>" + ScriptSafe(kViewerJs) + "</script>\n</body></html>\n");
+  file.Write("<script>" + ScriptSafe(kViewerJs) + "</script>\n");
+  if (!options.live_module.empty()) {  // the live page: the module, the file and the sliders' program
+    file.Write("<script>" + ScriptSafe(options.live_module) + "</script>\n");
+    file.Write("<script>window.MECHKIN_LIVE=" + JsonScriptSafe(options.live_data) + ";</script>\n");
+    file.Write("<script>" + ScriptSafe(kLiveJs) + "</script>\n");
+  }
+  file.Write("</body></html>\n");
   return file.Commit("", error);
 }
 

@@ -21,6 +21,9 @@ struct SceneOptions {
   std::optional<Vec3> up;
   // Panels of column names (--plots); empty: the file's "view"."plots", else its outputs.
   std::vector<std::vector<std::string>> plots;
+  // `view --live` (io/viewer_live.hpp): the WebAssembly module's text and
+  // window.MECHKIN_LIVE's JSON; both empty: the page plays its precomputed run.
+  std::string live_module, live_data;
 };
 
 /// "a,b;c" (columns by name, ',' within a plot, ';' between plots) → panels;

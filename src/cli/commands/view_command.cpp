@@ -7,6 +7,8 @@
 #include "cli/commands/request_options.hpp"
 #include "io/output_file.hpp"
 #include "io/viewer.hpp"
+#include "io/viewer_live.hpp"
+#include "model/loader.hpp"
 
 namespace mechkin {
 
@@ -27,6 +29,9 @@ void SetupViewCommand(CLI::App& app, ViewOptions* o) {
   cmd->add_option("--up", o->up, "Axis drawn upwards (default: the file's view.up, else against gravity, else y)")->check(CLI::IsMember({"x", "y", "z"}));
   cmd->add_option("--plots", o->plots, "Plotted columns: names separated by ',' within a plot, ';' between plots");
   AddKeepPartialOption(cmd, &o->keep_partial, "the page of the rows computed");
+  cmd->add_flag("--live", o->live,
+                "A live page: sliders for the parameters and drivers, the mechanism re-solved in the browser "
+                "(WebAssembly core, offline); needs the module tools/build_live.sh builds");
   AddForeignOptions(cmd, &o->foreign);
 }
 
@@ -85,6 +90,29 @@ Motion RunForPage(const Model& model, const RunRequest& request, int max_frames)
   return motion;
 }
 
+// `--live`: the module and the file's own text (a format-v1 file: the page compiles it
+// as `--set` does), or false with the reason printed. Checked before anything is written.
+bool PrepareLive(const ViewOptions& o, const importers::ImportOptions& foreign, std::string* module, std::string* text,
+                 std::ostream& err) {
+  std::string why;
+  if (!ReadLiveModule(module, &why)) {
+    err << "mechkin view: " << why << "\n";
+    return false;
+  }
+  Diagnostic problem;
+  if (!ReadMechanismFileText(o.file, text, &problem)) {
+    err << "mechkin view: " << o.file << ": " << problem.ToString() << "\n";
+    return false;
+  }
+  if (importers::DetectForeignFormat(o.file, text->substr(0, 4096)) != importers::ForeignFormat::None ||
+      !foreign.drives.empty()) {
+    err << "mechkin view: --live: " << o.file << " is not a mechkin file; the live page compiles format-v1 files: "
+        << "convert it first (mechkin import " << o.file << " -o FILE.json) and view that\n";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 RunRequest ViewOptions::Request() const {
@@ -100,6 +128,8 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   const std::optional<Model> loaded = LoadForCommand(o.file, err, overrides, foreign);
   if (!loaded || !ForeignHasDrives(o.file, foreign, *loaded, "view", err)) return 1;
   const Model& model = *loaded;
+  std::string live_module, live_text;
+  if (o.live && !PrepareLive(o, foreign, &live_module, &live_text, err)) return 1;
   RunRequest request = o.Request();
   std::string why;
   if (!request.IsValid(&why)) {
@@ -121,6 +151,11 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   if (motion.rows() == 0) return 1;  // nothing to show
   SceneOptions scene;
   scene.max_frames = o.max_frames;
+  if (o.live) {
+    scene.live_module = std::move(live_module);
+    // The page re-solves as `mechkin run` does (its default order 3, or the view's when higher).
+    scene.live_data = LiveData(model, live_text, std::max(request.order, RunRequest().order), o.max_frames);
+  }
   if (!o.up.empty()) scene.up = o.up == "x" ? Vec3::UnitX() : o.up == "z" ? Vec3::UnitZ() : Vec3::UnitY();
   if (!o.plots.empty() && !ParsePlots(motion, o.plots, &scene.plots, &why)) {
     err << "mechkin view: " << why << "\n";

@@ -18,6 +18,7 @@ struct ViewOptions {
   RunRequest request = DefaultViewRequest();  // --order (default 2), --tol, --solver
   int max_frames = 2000;
   bool forces = false, no_forces = false;
+  bool live = false;          // --live: the page re-solves in the browser (io/viewer_live.hpp)
   bool keep_partial = false;  // SIGINT writes the page of the rows so far (the stop marked), exit 130
   /// `request` with the forces choice.
   RunRequest Request() const;

@@ -277,19 +277,23 @@
   // already travelled bright and fading with its age, the rest faint.
   const paths = (function () {
     const group = new THREE.Group(), lines = [];
-    D.traces.forEach(function (tr, i) {
-      const pos = new THREE.Vector3(), q = new THREE.Quaternion(), xyz = new Float32Array(3 * n);
+    function fill(tr, xyz) {  // the trace's points from the poses (again after a live re-solve)
+      const pos = new THREE.Vector3(), q = new THREE.Quaternion();
       for (let k = 0; k < n; ++k) {
         const p = v3(tr.point);
         if (tr.body >= 0) { pose(tr.body, k, pos, q); p.applyQuaternion(q).add(pos); }
         xyz[3 * k] = p.x; xyz[3 * k + 1] = p.y; xyz[3 * k + 2] = p.z;
       }
+      return xyz;
+    }
+    D.traces.forEach(function (tr, i) {
+      const xyz = fill(tr, new Float32Array(3 * n));
       const geo = new THREE.BufferGeometry();
       geo.setAttribute("position", new THREE.BufferAttribute(xyz, 3));
       geo.setAttribute("color", new THREE.BufferAttribute(new Float32Array(3 * n), 3));
       const color = new THREE.Color(i ? palette[(i + 5) % palette.length] : 0x111111);
       const line = new THREE.Line(geo, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
-      lines.push({ line: line, color: color });
+      lines.push({ line: line, color: color, trace: tr });
       group.add(line);
     });
     const span = Math.max(T[n - 1] - T[0], 1e-300), mix = new THREE.Color();
@@ -305,8 +309,16 @@
         c.needsUpdate = true;
       });
     }
+    function refill() {
+      lines.forEach(function (l) {
+        const attr = l.line.geometry.attributes.position;
+        fill(l.trace, attr.array);
+        attr.needsUpdate = true;
+        l.line.geometry.computeBoundingSphere();
+      });
+    }
     scene.add(group);
-    return { group: group, fade: fade };
+    return { group: group, fade: fade, refill: refill };
   })();
 
   // Standard views: right-handed (right, up, back) axes for the up axis; y-up
@@ -458,6 +470,9 @@
     },
     color: function (body) { return groups[body].userData.color; },
     view: setView, ortho: setOrtho, fit: fit, svg: plots.svgText, csv: plots.csvText,
+    // The live page (live.js) changed D's poses, times and series in place: redraw all.
+    refresh: function () { paths.refill(); plots.draw(); setTime(current); renderer.render(scene, camera); },
+    time: function () { return current; },
   };
 
   // Plot helpers.
