@@ -31,7 +31,7 @@ analysis/kinematic_analysis.cpp analysis/load.cpp analysis/motion.cpp analysis/o
 analysis/quadratic_roots.cpp analysis/reduction.cpp analysis/row_error_estimate.cpp analysis/row_selection.cpp
 analysis/run_request.cpp analysis/sensitivity.cpp analysis/singular_points.cpp analysis/singularity.cpp
 analysis/step_observer.cpp
-io/live/live_api.cpp io/live/live_stubs.cpp
+io/live/live_api.cpp io/live/live_stubs.cpp io/plot_marks.cpp
 "
 objects=""
 for s in $sources; do objects="$objects $out/obj/$(echo "$s" | tr / _ | sed 's/\.cpp$/.o/')"; done

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""How the error bounds compare with the actual error on the piston-driven
-slider-crank toward its dead centre (python/tests/test_error_bounds.py's `piston`,
+"""How the error bounds compare with the actual error: on the N-four-bar and the
+Bennett linkage of python/tests/test_error_bounds.py (default bounds), then on the
+piston-driven slider-crank toward its dead centre (python/tests/test_error_bounds.py's `piston`,
 its geometry stored exactly, closed form θ0·(cos(πt/2) − 1)), per order, for both
 `error_bounds` modes at --tol 1e-10 and 1e-13: the worst error/bound (≤ 1: the bounds
 hold) and the rows where the actual error exceeds 1e-12 and the bound is more than
@@ -17,7 +18,32 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import test_error_bounds as cases  # noqa: E402
 
 
+def tightness(name, m, err):
+    """One case's line: worst error/bound, and the (error > 1e-12, bound > 100x) rows."""
+    bound = cases.bounds_of(m)
+    loose = cases.loose_rows(err, bound)
+    t = np.asarray(m["t"])
+    worst = max((bound[i, k] / err[i, k] for i, k in loose), default=0)
+    near = sorted(set("%.3f" % t[i] for i, _ in loose))
+    print("%-30s worst error/bound %.3g; rows over 100x: %d%s" % (
+        name, (err / bound).max(), len(loose), " (up to %.0fx, at t = %s)" % (worst, ", ".join(near)) if loose else ""))
+    return len(loose)
+
+
+def other_cases():
+    """The N-four-bar (every case of the test) and the Bennett linkage, default bounds."""
+    total = 0
+    for tol in (1e-10, 1e-13):
+        for n, theta0, rate in cases.CASES:
+            m, err = cases.n_four_bar_errors(n, theta0, rate, tol)
+            total += tightness("N=%d from %d deg at %d deg/s, tol %g" % (n, theta0, rate, tol), m, err)
+        m, err = cases.bennett(tol)
+        total += tightness("Bennett, tol %g" % tol, m, err)
+    print("rows over 100x in these cases: %d" % total)
+
+
 def main():
+    other_cases()
     for mode in ("auto", "measured"):
         for tol in (1e-10, 1e-13):
             m, err = cases.piston(tol, error_bounds=mode)

@@ -119,9 +119,14 @@ def main():
         err = np.abs(np.asarray(m["rocker_angle" + suffix[k]]) - exact[:, k]) / scale[k]
         bound = np.asarray(m["error_bound" + suffix[k]])
         big = err > 1e-13
+        # What a bound of 2κ^k(e_0 + 8u) (e_0 = κ·max(r, 4u)) would say on the same rows.
+        kappa, u = np.asarray(m["condition"]), 2.0 ** -53
+        e0 = kappa * np.maximum(np.asarray(m["residual"]), 4 * u)
+        alt = e0 if k == 0 else 2 * kappa ** k * (e0 + 8 * u)
+        median = lambda b: np.median(b[big] / err[big]) if big.any() else 0
         print("tol %g order %d: largest error %.3g, largest bound %.3g, worst error/bound %.3g, "
-              "median bound/error (error > 1e-13) %.3g" % (tol, k, err.max(), bound.max(), (err / bound).max(),
-                                                           np.median(bound[big] / err[big]) if big.any() else 0))
+              "median bound/error (error > 1e-13) %.3g; 2κ^k(e0+8u) would be a median %.3g x" % (
+                  tol, k, err.max(), bound.max(), (err / bound).max(), median(bound), median(alt)))
 
 
 if __name__ == "__main__":

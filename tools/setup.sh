@@ -42,7 +42,9 @@ if [ "$with_tests" -eq 1 ]; then
   # part of the suite, so a missing em++ stops the configure instead of skipping it.
   suite=(-DMECHKIN_BUILD_TESTS=ON -DMECHKIN_BUILD_BENCHMARKS=ON -DMECHKIN_LIVE=ON)
 else
-  suite=(-DMECHKIN_BUILD_TESTS=OFF -DMECHKIN_BUILD_BENCHMARKS=OFF)
+  # Not the live page's module (a build directory the test command configured keeps
+  # the option in its cache otherwise); `tools/setup.sh build -DMECHKIN_LIVE=ON` builds it.
+  suite=(-DMECHKIN_BUILD_TESTS=OFF -DMECHKIN_BUILD_BENCHMARKS=OFF -DMECHKIN_LIVE=OFF)
 fi
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${suite[@]}" "$@" >/dev/null
 cmake --build "$build" -j"$(nproc)"

@@ -6,6 +6,7 @@ event), the last table as CSV in #export, the outcome in the body's data-live-*.
 Needs the module (CMake MECHKIN_LIVE, Debian's emscripten); the README's test command
 builds it."""
 import csv
+import json
 import io
 import os
 import re
@@ -106,3 +107,27 @@ def test_where_the_loop_cannot_close_the_last_pose_stays(cli, page, tmp_path):
     _, expected = cli_table(cli, tmp_path, "d=85")
     assert values.shape == expected.shape
     assert same_run(names, values, expected) <= 1e-12
+
+
+def test_a_slider_after_a_failure_starts_from_the_value_in_use(cli, page, tmp_path):
+    # The failed coupler move puts b back (to the override and to its slider); the next
+    # move (the crank) re-solves with d = 85, b = 120, a = 42 (Grashof: 42 + 120 < 80 + 85),
+    # as the CLI does.
+    attrs, (names, values) = live(page, [("d", 85), ("b", 160), ("a", 42)])
+    assert attrs["data-live-kept"] == "b=120"
+    assert coupler_curve(attrs, 2)[0] == "ok" and attrs["data-live-message"] == ""
+    cli_names, expected = cli_table(cli, tmp_path, "d=85", "a=42")
+    assert names == cli_names and same_run(names, values, expected) <= 1e-12
+
+
+def test_what_the_live_core_leaves_out_is_refused_by_name(cli, tmp_path):
+    doc = json.load(open(FOUR_BAR))
+    for b in doc["bodies"]:
+        b["shape"] = {"type": "box", "size": [5, 5, 5]}
+    doc["outputs"] = doc.get("outputs", []) + [{"name": "gap", "type": "clearance", "body1": "crank", "body2": "rocker"}]
+    src = tmp_path / "with-clearance.json"
+    src.write_text(json.dumps(doc))
+    out = tmp_path / "page.html"
+    proc = subprocess.run([cli, "view", "--live", str(src), "-o", str(out)], capture_output=True, text=True)
+    assert proc.returncode == 1 and not out.exists()
+    assert "output `gap`: the live page cannot measure clearance outputs" in proc.stderr, proc.stderr

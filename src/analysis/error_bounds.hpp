@@ -9,7 +9,7 @@ namespace mechkin {
 /// each solve's round-off is amplified by about κ per order, and the pose's error
 /// perturbs Φ_q once more. Where the error of the orders below does grow by κ per
 /// order (the piston's regular rows, κ ≈ 5) this understates the jerk up to 30×;
-/// 2κ^k·e_0 would hold there but overstates the bundled four-bar's jerk 1000× (its
+/// 2κ^k·(e_0 + 8u) would hold there but overstates the bundled four-bar's jerk 1e4× (its
 /// errors do not grow with the order): only measuring tells (`--error-bounds
 /// measured`, row_error_estimate.hpp). Relative to
 /// the magnitude of q^(k) over the motion. Near singular positions the rows take

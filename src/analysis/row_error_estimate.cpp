@@ -197,12 +197,14 @@ bool RowErrorEstimator::RoundOff(KinematicsWorkspace& ws, int k) {
 bool RowErrorEstimator::Raise(KinematicsWorkspace& ws, const SystemState& s, double condition, double* bound) {
   double kappa = condition;
   if (!PositionError(ws, s, &kappa) || !SolveErrors(ws, s)) return false;
-  // e_0: the pose's error ε, doubled, and never below what the long-double residual
-  // can resolve. The chain propagates 2ε itself (and twice the stretch): a floor such
+  // e_0: the pose's error ε and the Euler parameters' stretch, doubled, and never
+  // below what the long-double residual can resolve. The chain propagates 2ε itself (and twice the stretch): a floor such
   // as 4uκ, had it been propagated along ε, would overstate the derivatives' error by
   // the floor's ratio to ε (up to 2e4× on the N-four-bar, constraints.md §8).
   const double eps = ScaledNorm(pose_error_, col_scales_);
-  const double e0 = std::max(kPositionSafety * eps, kappa * kExtendedRoundoff);
+  double stretch = 0;
+  for (double excess : unit_excess_) stretch = std::max(stretch, std::abs(excess));
+  const double e0 = std::max({kPositionSafety * eps, kPositionSafety * stretch, kappa * kExtendedRoundoff});
   bound[0] = std::max(bound[0], e0);
   delta_[0] = kPositionSafety * pose_error_;
   stretch_ = kPositionSafety;

@@ -1,7 +1,7 @@
 // Measured error bounds of one row near a singular position (constraints.md §8,
 // "Measured"; issue "Loudly wrong exactly where it matters", item 2).
 //
-// The bounds from κ (error_bounds.hpp) pay 2κ^k at order k, which near a singular
+// The bounds from κ (error_bounds.hpp) pay about κ per order, which near a singular
 // position misjudges the error by orders of magnitude either way, while the k-th
 // derivative's actual error there grows like k!/σ_min^k. This estimator measures
 // instead, at the solved, factorized row:
@@ -12,7 +12,7 @@
 //      moved instead of a parameter, central differences at ±h;
 //   3. each order's own solve error: the sampled Φ_q⁻¹(Φ_q q̂^(k) − RHS_k) plus the
 //      worst the round-off of the solve and of RHS_k can leave (RoundOff);
-// and states e_0 = max(2‖ε‖, κ·ε_ld), e_k = 4‖δq^(k)‖/‖q^(k)‖_max + 8uκ,
+// and states e_0 = max(2‖ε‖, 2 max|p| − 1, κ·ε_ld), e_k = 4‖δq^(k)‖/‖q^(k)‖_max + 8uκ,
 // ‖q^(k)‖_max the largest magnitude of order k seen along the run. Max-abs norms,
 // translations over the characteristic length. No allocation per row once the
 // active rows are known (buffers sized on the first row).

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "io/output_file.hpp"
+#include "io/plot_marks.hpp"
 #include "io/table_writer.hpp"
 
 namespace mechkin {
@@ -360,25 +361,16 @@ void WriteClearances(const Model& model, const Motion& m, const std::vector<int>
   j->Raw("]");
 }
 
-void Mark(double t, const char* kind, const std::string& label, bool* first, Json* j) {
-  j->Raw(*first ? "{" : ",{");
-  *first = false;
-  j->Key("t"), j->Num(t), j->Raw(","), j->Key("kind"), j->Str(kind), j->Raw(","), j->Key("label"), j->Str(label), j->Raw("}");
-}
-
-// Times every plot marks: re-selections of the redundant equations, a singular
-// position or limit of motion, first contacts, and where a partial run stopped.
-void WriteMarks(const Model& model, const Motion& m, double stop_t, Json* j) {
+// Times every plot marks (io/plot_marks.hpp).
+void WriteMarks(const Model& model, const Motion& m, Json* j) {
   j->Key("marks"), j->Raw("[");
   bool first = true;
-  for (const Reselection& r : m.report.reselections) Mark(r.t, "reselection", "redundant equations re-selected", &first, j);
-  const auto& singular = m.stop.singular ? m.stop.singular : m.report.singular;
-  if (singular) Mark(singular->t, "singular", "singular position", &first, j);
-  if (m.report.limit) Mark(m.report.limit->t, "limit", "limit of motion", &first, j);
-  for (const ContactHit& hit : m.report.contacts)
-    Mark(hit.t, "contact", "first contact of `" + model.BodyName(hit.body1) + "` and `" + model.BodyName(hit.body2) + "`",
-         &first, j);
-  if (!m.complete) Mark(stop_t, "stop", "run stopped", &first, j);
+  for (const PlotMark& mark : PlotMarks(model, m)) {
+    j->Raw(first ? "{" : ",{");
+    first = false;
+    j->Key("t"), j->Num(mark.t), j->Raw(","), j->Key("kind"), j->Str(mark.kind), j->Raw(","), j->Key("label");
+    j->Str(mark.label), j->Raw("}");
+  }
   j->Raw("]");
 }
 
@@ -447,9 +439,9 @@ std::string SceneData(const Model& model, const Motion& m, const SceneOptions& o
   WriteSeries(m, frames, &j);
   j.Raw(",");
   WritePanels(!o.plots.empty() ? o.plots : !model.view.plots.empty() ? model.view.plots : DefaultPanels(model, m), &j);
-  const double stop_t = m.stop.singular ? m.stop.singular->t : (m.rows() ? m.at(m.rows() - 1, 0) : 0);
+  const double stop_t = StopTime(m);
   j.Raw(",");
-  WriteMarks(model, m, stop_t, &j);
+  WriteMarks(model, m, &j);
   j.Raw(",");
   WriteClearances(model, m, frames, L, &j);
   j.Raw(","), j.Key("stop"), j.Raw("{"), j.Key("complete"), j.Raw(m.complete ? "true" : "false"), j.Raw(",");

@@ -23,8 +23,9 @@ bool ReadLiveModule(std::string* text, std::string* error) {
   std::ifstream f(path, std::ios::binary);
   if (path.empty() || !f) {
     *error = "--live: the WebAssembly module " + (path.empty() ? std::string("mechkin_live.js") : path) +
-             " is not there (this mechkin was built without it); install Debian's emscripten "
-             "(apt-get install emscripten) and build it with tools/build_live.sh (or configure with -DMECHKIN_LIVE=ON), "
+             " is not there (not built yet, or this build leaves it out: CMake option MECHKIN_LIVE); install Debian's "
+             "emscripten (apt-get install emscripten) and build it with tools/build_live.sh (or configure with "
+             "-DMECHKIN_LIVE=ON and build), "
              "or point MECHKIN_LIVE_MODULE at a built mechkin_live.js";
     return false;
   }

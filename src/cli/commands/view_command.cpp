@@ -113,6 +113,19 @@ bool PrepareLive(const ViewOptions& o, const importers::ImportOptions& foreign, 
   return true;
 }
 
+// What the live page's core leaves out (src/io/live/live_stubs.cpp) refused before
+// anything is written, by place: clearance outputs (FCL is not in the module).
+bool LiveCanRun(const ViewOptions& o, const Model& model, std::ostream& err) {
+  for (size_t i = 0; i < model.outputs.size(); ++i) {
+    if (model.outputs[i].kind != OutputKind::Clearance) continue;
+    err << "mechkin view: --live: " << o.file << ": output `" << model.outputs[i].name
+        << "`: the live page cannot measure clearance outputs (FCL is not in its WebAssembly core); "
+        << "view the file without --live, or remove its clearance outputs for the live page\n";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 RunRequest ViewOptions::Request() const {
@@ -129,7 +142,7 @@ int RunView(const ViewOptions& o, std::ostream& out, std::ostream& err) {
   if (!loaded || !ForeignHasDrives(o.file, foreign, *loaded, "view", err)) return 1;
   const Model& model = *loaded;
   std::string live_module, live_text;
-  if (o.live && !PrepareLive(o, foreign, &live_module, &live_text, err)) return 1;
+  if (o.live && (!LiveCanRun(o, model, err) || !PrepareLive(o, foreign, &live_module, &live_text, err))) return 1;
   RunRequest request = o.Request();
   std::string why;
   if (!request.IsValid(&why)) {

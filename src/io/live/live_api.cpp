@@ -20,6 +20,7 @@
 
 #include "analysis/load.hpp"
 #include "analysis/run_request.hpp"
+#include "io/plot_marks.hpp"
 #include "mobility/mobility.hpp"
 
 namespace mechkin::live {
@@ -58,17 +59,26 @@ std::string MobilityJson(const Model& model) {
   return j.dump();
 }
 
-// Compiles the text with the overrides; false with the loader's messages.
+// Compiles the text with the overrides; false with the loader's messages, or with the
+// message of anything compiling throws (an exception must not leave an extern "C" call:
+// it would abort the module and the page with it).
 bool CompileNow(State& s) {
-  LoadResult loaded = LoadMechanismText(s.text, "page", s.overrides);
-  if (!loaded.ok()) {
-    s.error = Messages(loaded.errors);
+  try {
+    LoadResult loaded = LoadMechanismText(s.text, "page", s.overrides);
+    if (!loaded.ok()) {
+      s.error = Messages(loaded.errors);
+      return false;
+    }
+    s.model = std::move(loaded.model);
+    return true;
+  } catch (const std::exception& e) {
+    s.error = e.what();
     return false;
   }
-  s.model = std::move(loaded.model);
-  return true;
 }
 
+// The run's table and how it ended: the stop's message, the singular positions it
+// passed (the report's notes) and the plots' marks, as the viewer's page has them.
 void KeepMotion(State& s, const Motion& m) {
   s.rows = m.rows();
   s.cols = m.cols();
@@ -76,7 +86,10 @@ void KeepMotion(State& s, const Motion& m) {
   nlohmann::json names = nlohmann::json::array();
   for (const ColumnDescriptor& c : m.columns()) names.push_back({c.name, c.Header()});
   s.columns = names.dump();
-  s.status = nlohmann::json{{"complete", m.complete}, {"message", m.stop.message}}.dump();
+  nlohmann::json marks = nlohmann::json::array();
+  for (const PlotMark& mark : PlotMarks(*s.model, m)) marks.push_back({{"t", mark.t}, {"kind", mark.kind}, {"label", mark.label}});
+  s.status = nlohmann::json{{"complete", m.complete}, {"message", m.stop.message}, {"notes", m.report.notes},
+                            {"marks", marks}}.dump();
 }
 
 }  // namespace
@@ -138,7 +151,8 @@ int mk_live_rows() { return Live().rows; }
 int mk_live_cols() { return Live().cols; }
 /// JSON array of the last table's columns: [name, header] ("crank.x", "crank.x [mm]").
 const char* mk_live_columns() { return Live().columns.c_str(); }
-/// JSON: {"complete": bool, "message": the stop's explanation}.
+/// JSON: {"complete": bool, "message": the stop's explanation, "notes": [the singular
+/// positions passed], "marks": [{"t", "kind", "label"}: the plots' marks]}.
 const char* mk_live_status() { return Live().status.c_str(); }
 const char* mk_live_error() { return Live().error.c_str(); }
 

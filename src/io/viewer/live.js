@@ -23,8 +23,10 @@
   let M = null, api = null, last = null;  // the module, its functions, the last valid table
   const moves = [];  // the #live= moves, made once the module is ready
 
-  function fail(text) {
-    message.textContent = "cannot close: " + text;
+  // A failure shown in the bar: `what` says which ("cannot close" for a move the file
+  // cannot assemble or compile with; "live page" for the module itself).
+  function fail(what, text) {
+    message.textContent = what + ": " + text;
     body.setAttribute("data-live-state", "failed");
     body.setAttribute("data-live-message", message.textContent);
   }
@@ -38,7 +40,7 @@
   function apply(table) {
     const rows = table.rows, cols = table.cols, v = table.values, at = table.columns.at;
     const row = function (k) { return Math.min(k, rows - 1) * cols; };  // a stopped run: its last row held
-    for (let k = 0; k < Math.min(n, rows); ++k) T[k] = v[k * cols];
+    for (let k = 0; k < n; ++k) T[k] = v[row(k)];  // a stopped run: its last time held
     D.bodies.forEach(function (b) {
       const c = ["x", "y", "z", "e1", "e2", "e3", "e0"].map(function (s) { return at.get(b.name + "." + s); });
       for (let k = 0; k < n; ++k) for (let a = 0; a < 7; ++a) b.poses[7 * k + a] = v[row(k) + c[a]];
@@ -54,12 +56,17 @@
     const t0 = performance.now();
     const ptr = api.run(LIVE.steps, LIVE.order);
     const solved = performance.now();
-    if (!ptr) { fail(M.UTF8ToString(api.error())); return false; }
+    if (!ptr) { fail("cannot close", M.UTF8ToString(api.error())); return false; }
     const rows = api.rows(), cols = api.cols();
     last = { rows: rows, cols: cols, values: new Float64Array(M.HEAPF64.buffer, ptr, rows * cols).slice(), columns: columnIndex() };
-    apply(last);
     const status = JSON.parse(M.UTF8ToString(api.status()));
-    message.textContent = status.complete ? "" : "run stopped: " + status.message.split("\n")[0];
+    // The plots' marks are this run's (a singular position, limit, stop, ...), drawn by apply's refresh.
+    D.marks.length = 0;
+    status.marks.forEach(function (m) { D.marks.push(m); });
+    apply(last);
+    message.textContent = status.complete ? status.notes.map(function (s) { return s.split("\n")[0]; }).join("; ")
+                                          : "run stopped: " + status.message.split("\n")[0];
+    body.setAttribute("data-live-marks", status.marks.map(function (m) { return m.kind + "@" + m.t; }).join(","));
     showMobility();
     body.setAttribute("data-live-state", status.complete ? "ok" : "partial");
     body.setAttribute("data-live-message", message.textContent);
@@ -86,10 +93,12 @@
     wrap.appendChild(input);
     wrap.appendChild(shown);
     input.style.width = "110px";
-    input.addEventListener("input", function () { shown.textContent = " " + Number(Number(input.value).toPrecision(6)); onInput(Number(input.value)); });
+    input.addEventListener("input", function () { showValue(input); onInput(Number(input.value)); });
     box.appendChild(wrap);
     return input;
   }
+  // The number beside a slider (the span after it) shows the slider's value.
+  function showValue(input) { input.nextSibling.textContent = " " + Number(Number(input.value).toPrecision(6)); }
   const inputs = new Map();
   function parameterSliders() {
     LIVE.parameters.forEach(function (p) {
@@ -98,13 +107,17 @@
     });
   }
   // A parameter's new value: the override set, the run re-solved; on a failure the
-  // last valid value's override comes back, so the next move starts from a valid file.
+  // last valid value comes back, to the override and to the slider (which shows the
+  // value in use), so the next move starts from a valid file.
   const good = new Map(LIVE.parameters.map(function (p) { return [p.name, p.value]; }));
   function setParameter(name, value) {
     api.set(name, value);
     body.setAttribute("data-live-set", name + "=" + String(value));
     if (resolve()) { good.set(name, value); return true; }
     api.set(name, good.get(name));
+    const input = inputs.get(name);
+    if (input) { input.value = String(good.get(name)); showValue(input); }
+    body.setAttribute("data-live-kept", name + "=" + input.value);
     return false;
   }
   // A driver's slider scrubs the run: the first time its value reaches the slider's.
@@ -159,7 +172,7 @@
       run: M.cwrap("mk_live_run", "number", ["number", "number"]), rows: M._mk_live_rows, cols: M._mk_live_cols,
       columns: M._mk_live_columns, status: M._mk_live_status, error: M._mk_live_error, mobility: M._mk_live_mobility,
     };
-    if (api.load(LIVE.spec)) { fail(M.UTF8ToString(api.error())); return; }
+    if (api.load(LIVE.spec)) { fail("live page", M.UTF8ToString(api.error())); return; }
     parameterSliders();
     driverSliders();
     resolve();
@@ -171,7 +184,7 @@
     if (moves.length) document.getElementById("export").textContent = csv();
     bench();
     body.setAttribute("data-live-ready", "1");
-  }, function (e) { fail("the WebAssembly module did not start: " + e); });
+  }, function (e) { fail("live page", "the WebAssembly module did not start: " + e); });
   // #bench=K (tools/live_benchmark.py): K re-solves as a slider makes them — the first
   // parameter alternately 1 % above and at its value, each recompiled, solved and
   // redrawn. The benchmark times the page in wall-clock time against K = 0 (headless
