@@ -5,8 +5,9 @@ slider-crank toward its dead centre and the Bennett linkage — every row's
 (k = 0…3), relative to the order's magnitude over the motion, at --tol 1e-10 and 1e-13.
 The N-four-bars are drawn where their coordinates are exact (θ0 = 0, ±180°: the pivots
 and tips are integers), so that the closed form is the stored mechanism's own; the
-piston's geometry (34, 50, pin (16, 30) in 1/64 m) is stored exactly too. The piston's
-regular rows are a known gap (an expected failure, see its test).
+piston's geometry (34, 50, pin (16, 30) in 1/64 m) is stored exactly too. On the
+piston's regular rows the bound from κ alone understates the jerk; the default's
+sampled measurements (analysis/bound_sampling.hpp) raise it there.
 docs/constraints.md §8 states what the bounds mean and how they are measured."""
 import math
 
@@ -138,14 +139,29 @@ def piston(tol, error_bounds="auto"):
     return m, err
 
 
-@pytest.mark.xfail(strict=True, reason="known gap (docs/constraints.md §8): the bounds from κ of the regular rows "
-                   "(κ ≈ 5) understate the jerk's error up to 2x at tol 1e-13 and 30x at 1e-10")
+def bounds_from_kappa(motion, k):
+    """The a priori bound of order k from the row's κ and scaled residual alone
+    (analysis/error_bounds.hpp): e_0 = κ·max(r, 4u), e_k = 8u·κ^k + κ·e_0."""
+    u = np.finfo(float).eps / 2
+    kappa, r = np.asarray(motion["condition"]), np.asarray(motion["residual"])
+    e0 = kappa * np.maximum(r, 4 * u)
+    return e0 if k == 0 else 8 * u * kappa ** k + kappa * e0
+
+
 @pytest.mark.parametrize("tol", [1e-10, 1e-13])
 def test_piston_toward_its_dead_centre_bounds_bound(tol):
+    """The default's bounds hold on every row and are within 100x of the error where it
+    exceeds 1e-12 — the regular rows (κ ≈ 5) through the sampled measurements
+    (analysis/bound_sampling.hpp), where the bound from κ alone understates the jerk."""
     m, err = piston(tol)
     assert m.complete and m["condition"][-1] > 500  # κ grows toward the dead centre
-    assert (err <= bounds_of(m)).all()
+    ratio = err / bounds_of(m)
+    assert ratio.max() <= 1, "row %d order %d" % np.unravel_index(np.argmax(ratio), ratio.shape)
+    assert not loose_rows(err, bounds_of(m))
     assert err[-1, 3] > 1e-10  # the jerk there has lost digits
+    assert (err[:, 3] > 1e-12).sum() > 50  # not vacuous
+    regular = np.asarray(m["condition"]) < 20  # rows the default does not measure whole
+    assert (err[regular, 3] > bounds_from_kappa(m, 3)[regular]).any()  # where κ alone fell short
 
 
 @pytest.mark.parametrize("tol", [1e-10, 1e-13])
@@ -160,7 +176,7 @@ def test_piston_measured_bounds_bound_on_every_row(tol):
     assert (err[:, 3] > 1e-12).sum() > 50  # not vacuous
     default, _ = piston(tol)
     assert np.array_equal(np.asarray(m["crank_angle_ttt"]), np.asarray(default["crank_angle_ttt"]))  # same motion
-    assert (err[:, 3] > bounds_of(default)[:, 3]).any()  # where the default's bound did not hold
+    assert (err[:, 3] > bounds_from_kappa(default, 3)).any()  # where the bound from κ alone does not hold
 
 
 @pytest.mark.parametrize("tol", [1e-10, 1e-13])

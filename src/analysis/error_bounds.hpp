@@ -10,10 +10,10 @@ namespace mechkin {
 /// perturbs Φ_q once more. Where the error of the orders below does grow by κ per
 /// order (the piston's regular rows, κ ≈ 5) this understates the jerk up to 30×;
 /// 2κ^k·(e_0 + 8u) would hold there but overstates the bundled four-bar's jerk 1e4× (its
-/// errors do not grow with the order): only measuring tells (`--error-bounds
-/// measured`, row_error_estimate.hpp). Relative to
-/// the magnitude of q^(k) over the motion. Near singular positions the rows take
-/// measured bounds instead (row_error_estimate.hpp). Checked against closed forms in
+/// errors do not grow with the order): only measuring tells, so a run measures a sample
+/// of its rows and raises these bounds where the samples ask (bound_sampling.hpp), and
+/// the rows near singular positions whole (row_error_estimate.hpp). Relative to
+/// the magnitude of q^(k) over the motion. Checked against closed forms in
 /// python/tests/test_error_bounds.py and tests/extremes/assembly_test.cpp.
 /// Fills bound[0..max_order].
 void CalcErrorBounds(double condition, double residual, int max_order, double* bound);

@@ -10,6 +10,7 @@
 #include "analysis/assembly.hpp"
 #include "analysis/clearance.hpp"
 #include "spec/diagnostic.hpp"
+#include "analysis/bound_sampling.hpp"
 #include "analysis/error_bounds.hpp"
 #include "analysis/row_error_estimate.hpp"
 #include "analysis/row_selection.hpp"
@@ -173,6 +174,8 @@ class Stepper {
   double UpdateSetAsideResidual();
   void CheckSetAsideOnSolvedBodies();
   void FinishDiagnostics(StepDiagnostics* diag);
+  void MeasureBounds(double kappa, StepDiagnostics* diag);
+  void SampleBounds(double kappa, StepDiagnostics* diag);
   bool MeasuresBounds(double condition) const {
     return options_.measure_every_row ||
            (condition >= kMeasureBoundsCondition && condition >= kMeasureBoundsGrowth * bounds_regular_);
@@ -223,6 +226,7 @@ class Stepper {
   bool step_have_sign_ = false;
   std::vector<std::unique_ptr<StepObserver>> observers_;
   std::unique_ptr<RowErrorEstimator> errors_;  // the measured bounds near singular positions
+  BoundSampler sampler_;  // and on a sample of the other rows
   double bounds_regular_ = std::numeric_limits<double>::infinity();  // smallest sharper κ along the run
 };
 
@@ -327,7 +331,31 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   bounds_regular_ = std::min(bounds_regular_, kappa);
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
   errors_->Observe(s_);
-  if (MeasuresBounds(kappa)) errors_->Raise(*ws_, s_, kappa, diag->error_bound);
+  const bool sample = sampler_.Due();
+  if (MeasuresBounds(kappa)) MeasureBounds(kappa, diag);
+  else if (sample) SampleBounds(kappa, diag);
+  else sampler_.Apply(diag->condition, diag->error_bound, options_.order);
+}
+
+// A row measured whole (near a singular position, or --error-bounds measured): its
+// bounds are the measured ones, and the sampler learns from them for the rows after.
+void Stepper::MeasureBounds(double kappa, StepDiagnostics* diag) {
+  double from_kappa[kMaxOrder + 1];
+  std::copy(diag->error_bound, diag->error_bound + kMaxOrder + 1, from_kappa);
+  if (errors_->Raise(*ws_, s_, kappa, diag->error_bound)) sampler_.Learn(from_kappa, diag->error_bound, options_.order);
+}
+
+// A sampled row of the default (bound_sampling.hpp): measured from nothing, so that
+// the sampler sees the measured bounds themselves.
+void Stepper::SampleBounds(double kappa, StepDiagnostics* diag) {
+  double measured[kMaxOrder + 1] = {0, 0, 0, 0, 0};
+  if (!errors_->Raise(*ws_, s_, kappa, measured)) {
+    sampler_.Apply(diag->condition, diag->error_bound, options_.order);
+    return;
+  }
+  sampler_.Learn(diag->error_bound, measured, options_.order);
+  BoundSampler::Report(diag->condition, diag->error_bound, measured, options_.order);
+  std::copy(measured, measured + options_.order + 1, diag->error_bound);
 }
 
 // Redundancy that follows the motion (issue "Right at every order", item 1): the

@@ -50,8 +50,8 @@ struct AnalysisOptions {
   bool ceres_normalization_residual = false;  // Ceres: pᵀp − 1 residuals instead of the manifold (measured worse)
   bool branch_guard = true;             // sub-step on a det Φ_q sign change or a far jump (off: plain Newton)
   // Every row's error bounds measured (row_error_estimate.hpp), not only near singular
-  // positions: bounds that hold where the a priori ones from κ understate (docs/constraints.md §8),
-  // for 1.5–2.9× the run time (tools/error_bounds_cost.sh).
+  // positions and on a sample of the other rows (bound_sampling.hpp; docs/constraints.md §8),
+  // for 1.4–2.4× the run time (tools/error_bounds_cost.sh).
   bool measure_every_row = false;
   // Bodies whose motion is asked for (table selection); empty = all. When it is a
   // strict subset, the position and derivative solves run block by block along the

@@ -36,8 +36,9 @@ enum class LimitAction { Stop, Report };
 /// note it and go on (the default), or stop there.
 enum class ContactAction { Stop, Report };
 /// Which rows have their error bounds measured (`run --error-bounds`, Python's
-/// error_bounds): those near singular positions (auto, the default), or every row
-/// (measured: bounds that hold on every row, docs/constraints.md §8, at 1.5–2.9× the time).
+/// error_bounds): those near singular positions and a sample of the others (auto, the
+/// default, bound_sampling.hpp), or every row (measured, docs/constraints.md §8, at
+/// 1.4–2.4× the time).
 enum class ErrorBoundsChoice { Auto, Measured };
 
 struct RunRequest {

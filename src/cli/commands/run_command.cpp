@@ -47,8 +47,9 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
                   "located and noted on stderr) or stop (the run stops there)")
       ->check(CLI::IsMember(NamesOf<ContactAction>()));
   cmd->add_option("--error-bounds", o->error_bounds,
-                  "Rows whose error_bound columns are measured: auto (default; near singular positions, the others "
-                  "from the condition estimate) or measured (every row: bounds that hold, 1.5-2.9x the time)")
+                  "Rows whose error_bound columns are measured: auto (default; near singular positions and a sample "
+                  "of the others, which raises the condition estimate's bounds where they fall short) or measured "
+                  "(every row, 1.4-2.4x the time)")
       ->check(CLI::IsMember(NamesOf<ErrorBoundsChoice>()));
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_flag("--quiet", o->quiet,
