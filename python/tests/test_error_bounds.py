@@ -98,8 +98,8 @@ def test_n_four_bar_bounds_tight_away_from_the_singular_position(n, theta0, rate
     """Where the actual error exceeds 1e-12 the bound is at most 100x it, on every row
     more than two rows (2°) from the singular position at ±90° (t ≈ 0.928). Known gap
     (docs/constraints.md §8): on the nearest rows (κ_s 1e4-3e4) the jerk's bound is up
-    to 3600x its error — the pose's error along the near-null direction is below what
-    the long-double residual resolves there. Before the pose error was taken at unit
+    to 3600x its error — the lower orders' worst-case round-off propagated into the
+    jerk (a binary128 residual was tried and is not the cure). Before the pose error was taken at unit
     Euler parameters and its floor no longer propagated, 432 rows of these cases were
     over 100x (up to 2.3e4x), on rows near and far from ±90°."""
     m, err = n_four_bar_errors(n, theta0, rate, tol)
