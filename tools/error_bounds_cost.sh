@@ -7,6 +7,7 @@
 #   baseline  the default of another build, when given (e.g. one from before the samples).
 #   bash tools/error_bounds_cost.sh [build/mechkin] [baseline-mechkin]
 set -euo pipefail
+shopt -s inherit_errexit  # a failed run inside $(seconds ...) stops the script
 bin="${1:-build/mechkin}"
 baseline="${2:-}"
 tmp="$(mktemp -d)"
@@ -14,7 +15,7 @@ trap 'rm -rf "$tmp"' EXIT
 seconds() {  # wall time of one run: binary, then its arguments
   local start
   start=$(date +%s.%N)
-  "$@" -o "$tmp/t.csv" 2>/dev/null
+  "$@" -o "$tmp/t.csv" 2>/dev/null || { echo "error_bounds_cost.sh: failed: $*" >&2; exit 1; }
   echo "$(date +%s.%N) - $start" | bc
 }
 for name in spatial-slider-crank double-wishbone-suspension bennett-linkage planar-four-bar; do

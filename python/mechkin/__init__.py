@@ -299,8 +299,9 @@ class Model:
         clearance output's bodies is located and the run goes on; 'stop': the run
         ends there, motion.stop.kind 'contact'; either way motion.contacts lists
         them; `run --on-contact`), error_bounds ('auto': measured near singular
-        positions, from the condition estimate elsewhere; 'measured': every row,
-        bounds that hold at 1.5-2.9x the time; `run --error-bounds`). Out-of-range values raise ValueError with the
+        positions and on a sample of the other rows, which raises the condition
+        estimate's bounds where they fall short; 'measured': every row, 1.4-2.4x
+        the time; `run --error-bounds`). Out-of-range values raise ValueError with the
         CLI's message. start, end, steps replace the file's analysis span."""
         if request is None:
             norm = lambda sel: None if sel is None else ([sel] if isinstance(sel, str) else list(sel))

@@ -98,9 +98,9 @@ selects), si=False (SI units instead of the file's), forces=None (None: when the
 file has inertia or loads), sensitivity=[] (parameter names), max_iterations=25,
 on_limit='stop' ('report': a joint reaching its limits is noted and the run goes on;
 the CLI's --on-limit), on_contact='report' ('stop': the run ends at the first contact of
-a clearance output's bodies; the CLI's --on-contact), error_bounds='auto' ('measured':
-every row's error bounds measured, bounds that hold, 1.5-2.9x the time; the CLI's
---error-bounds).)doc")
+a clearance output's bodies; the CLI's --on-contact), error_bounds='auto' (measured near
+singular positions and on a sample of the other rows; 'measured': every row, 1.4-2.4x
+the time; the CLI's --error-bounds).)doc")
       .def(py::init(&MakeRequest), py::arg("order") = 3, py::arg("tol") = 1e-10, py::arg("solver") = "newton",
            py::arg("formulation") = "omega", py::arg("bodies") = py::none(), py::arg("outputs") = py::none(),
            py::arg("si") = false, py::arg("forces") = py::none(), py::arg("sensitivity") = std::vector<std::string>{},

@@ -160,7 +160,7 @@ def test_piston_toward_its_dead_centre_bounds_bound(tol):
     assert not loose_rows(err, bounds_of(m))
     assert err[-1, 3] > 1e-10  # the jerk there has lost digits
     assert (err[:, 3] > 1e-12).sum() > 50  # not vacuous
-    regular = np.asarray(m["condition"]) < 20  # rows the default does not measure whole
+    regular = np.asarray(m["condition"]) < 20  # regular rows (one-step κ; whole measurement reads the sharper one)
     assert (err[regular, 3] > bounds_from_kappa(m, 3)[regular]).any()  # where κ alone fell short
 
 

@@ -8,9 +8,9 @@
 #include <optional>
 
 #include "analysis/assembly.hpp"
+#include "analysis/bound_sampling.hpp"
 #include "analysis/clearance.hpp"
 #include "spec/diagnostic.hpp"
-#include "analysis/bound_sampling.hpp"
 #include "analysis/error_bounds.hpp"
 #include "analysis/row_error_estimate.hpp"
 #include "analysis/row_selection.hpp"
@@ -174,8 +174,8 @@ class Stepper {
   double UpdateSetAsideResidual();
   void CheckSetAsideOnSolvedBodies();
   void FinishDiagnostics(StepDiagnostics* diag);
-  void MeasureBounds(double kappa, StepDiagnostics* diag);
-  void SampleBounds(double kappa, StepDiagnostics* diag);
+  void MeasureWholeRow(double kappa, StepDiagnostics* diag);
+  void SampleRow(double kappa, StepDiagnostics* diag);
   bool MeasuresBounds(double condition) const {
     return options_.measure_every_row ||
            (condition >= kMeasureBoundsCondition && condition >= kMeasureBoundsGrowth * bounds_regular_);
@@ -227,6 +227,7 @@ class Stepper {
   std::vector<std::unique_ptr<StepObserver>> observers_;
   std::unique_ptr<RowErrorEstimator> errors_;  // the measured bounds near singular positions
   BoundSampler sampler_;  // and on a sample of the other rows
+  BoundSampler sampler_at_row_;  // as it was before this row (a re-solved row goes through it once)
   double bounds_regular_ = std::numeric_limits<double>::infinity();  // smallest sharper κ along the run
 };
 
@@ -331,30 +332,39 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   bounds_regular_ = std::min(bounds_regular_, kappa);
   CalcErrorBounds(diag->condition, diag->residual, kMaxOrder, diag->error_bound);
   errors_->Observe(s_);
-  const bool sample = sampler_.Due();
-  if (MeasuresBounds(kappa)) MeasureBounds(kappa, diag);
-  else if (sample) SampleBounds(kappa, diag);
-  else sampler_.Apply(diag->condition, diag->error_bound, options_.order);
+  // Samples only where there are derivatives to raise, and not on the block-by-block
+  // path, whose factorization cannot solve the whole system the estimator needs.
+  const bool sample = sampler_.Due() && options_.order > 0 && !ws_->block_solver();
+  if (MeasuresBounds(kappa)) MeasureWholeRow(kappa, diag);
+  else if (sample) SampleRow(kappa, diag);
+  else sampler_.RaiseUnsampled(kappa, diag->error_bound, options_.order);
 }
 
 // A row measured whole (near a singular position, or --error-bounds measured): its
-// bounds are the measured ones, and the sampler learns from them for the rows after.
-void Stepper::MeasureBounds(double kappa, StepDiagnostics* diag) {
-  double from_kappa[kMaxOrder + 1];
-  std::copy(diag->error_bound, diag->error_bound + kMaxOrder + 1, from_kappa);
-  if (errors_->Raise(*ws_, s_, kappa, diag->error_bound)) sampler_.Learn(from_kappa, diag->error_bound, options_.order);
+// bounds are the measured ones (the position's never below its bound from κ), and the
+// sampler learns from them for the rows after.
+void Stepper::MeasureWholeRow(double kappa, StepDiagnostics* diag) {
+  static_assert(BoundSampler::kMaxOrder == kMaxOrder, "one highest order");
+  double measured[kMaxOrder + 1] = {};
+  if (!errors_->Raise(*ws_, s_, kappa, measured)) {
+    sampler_.RaiseUnsampled(kappa, diag->error_bound, options_.order);
+    return;
+  }
+  sampler_.Learn(diag->error_bound, measured, options_.order, BoundSampler::Row::MeasuredWhole);
+  diag->error_bound[0] = std::max(diag->error_bound[0], measured[0]);
+  std::copy(measured + 1, measured + options_.order + 1, diag->error_bound + 1);
 }
 
 // A sampled row of the default (bound_sampling.hpp): measured from nothing, so that
 // the sampler sees the measured bounds themselves.
-void Stepper::SampleBounds(double kappa, StepDiagnostics* diag) {
-  double measured[kMaxOrder + 1] = {0, 0, 0, 0, 0};
+void Stepper::SampleRow(double kappa, StepDiagnostics* diag) {
+  double measured[kMaxOrder + 1] = {};
   if (!errors_->Raise(*ws_, s_, kappa, measured)) {
-    sampler_.Apply(diag->condition, diag->error_bound, options_.order);
+    sampler_.RaiseUnsampled(kappa, diag->error_bound, options_.order);
     return;
   }
-  sampler_.Learn(diag->error_bound, measured, options_.order);
-  BoundSampler::Report(diag->condition, diag->error_bound, measured, options_.order);
+  sampler_.Learn(diag->error_bound, measured, options_.order, BoundSampler::Row::Sampled);
+  BoundSampler::ClampSampled(kappa, diag->error_bound, measured, options_.order);
   std::copy(measured, measured + options_.order + 1, diag->error_bound);
 }
 
@@ -402,6 +412,7 @@ bool Stepper::ReselectAndResolve(StepDiagnostics* diag, AnalysisReport* rep) {
   prev_sign_ = ws_->factorization().Sign();
   have_sign_ = true;
   UpdateSetAsideResidual();  // other rows are set aside now
+  sampler_ = sampler_at_row_;  // the row's bounds are decided again, once
   FinishDiagnostics(diag);
   return true;
 }
@@ -586,6 +597,7 @@ void Stepper::Run(const StepCallback& on_step, AnalysisReport* rep) {
       rep->message = SolveFailureMessage(*ws_, s_, t, rep->rows, last_.message);
       return;
     }
+    sampler_at_row_ = sampler_;
     FinishDiagnostics(&diag);
     ReselectAndResolve(&diag, rep);
     if (StopAtConditionMinimum(t, h, rep)) return;
