@@ -174,8 +174,7 @@ class Stepper {
   double UpdateSetAsideResidual();
   void CheckSetAsideOnSolvedBodies();
   void FinishDiagnostics(StepDiagnostics* diag);
-  void MeasureWholeRow(double kappa, StepDiagnostics* diag);
-  void SampleRow(double kappa, StepDiagnostics* diag);
+  void MeasureRow(double kappa, BoundSampler::Row kind, StepDiagnostics* diag);
   bool MeasuresBounds(double condition) const {
     return options_.measure_every_row ||
            (condition >= kMeasureBoundsCondition && condition >= kMeasureBoundsGrowth * bounds_regular_);
@@ -335,36 +334,28 @@ void Stepper::FinishDiagnostics(StepDiagnostics* diag) {
   // Samples only where there are derivatives to raise, and not on the block-by-block
   // path, whose factorization cannot solve the whole system the estimator needs.
   const bool sample = sampler_.Due() && options_.order > 0 && !ws_->block_solver();
-  if (MeasuresBounds(kappa)) MeasureWholeRow(kappa, diag);
-  else if (sample) SampleRow(kappa, diag);
+  if (MeasuresBounds(kappa)) MeasureRow(kappa, BoundSampler::Row::MeasuredWhole, diag);
+  else if (sample) MeasureRow(kappa, BoundSampler::Row::Sampled, diag);
   else sampler_.RaiseUnsampled(kappa, diag->error_bound, options_.order);
 }
 
-// A row measured whole (near a singular position, or --error-bounds measured): its
-// bounds are the measured ones (the position's never below its bound from κ), and the
-// sampler learns from them for the rows after.
-void Stepper::MeasureWholeRow(double kappa, StepDiagnostics* diag) {
+// A row whose bounds are measured, from nothing so that the sampler learns the measured
+// bounds themselves (bound_sampling.hpp). A row measured whole (near a singular position,
+// or --error-bounds measured) reports them as measured, its position's never below the
+// bound from κ; a sampled row between the bound from κ and the ceiling.
+void Stepper::MeasureRow(double kappa, BoundSampler::Row kind, StepDiagnostics* diag) {
   static_assert(BoundSampler::kMaxOrder == kMaxOrder, "one highest order");
   double measured[kMaxOrder + 1] = {};
   if (!errors_->Raise(*ws_, s_, kappa, measured)) {
     sampler_.RaiseUnsampled(kappa, diag->error_bound, options_.order);
     return;
   }
-  sampler_.Learn(diag->error_bound, measured, options_.order, BoundSampler::Row::MeasuredWhole);
-  diag->error_bound[0] = std::max(diag->error_bound[0], measured[0]);
-  std::copy(measured + 1, measured + options_.order + 1, diag->error_bound + 1);
-}
-
-// A sampled row of the default (bound_sampling.hpp): measured from nothing, so that
-// the sampler sees the measured bounds themselves.
-void Stepper::SampleRow(double kappa, StepDiagnostics* diag) {
-  double measured[kMaxOrder + 1] = {};
-  if (!errors_->Raise(*ws_, s_, kappa, measured)) {
-    sampler_.RaiseUnsampled(kappa, diag->error_bound, options_.order);
-    return;
+  sampler_.Learn(diag->error_bound, measured, options_.order, kind);
+  if (kind == BoundSampler::Row::Sampled) {
+    BoundSampler::ClampSampled(kappa, diag->error_bound, measured, options_.order);
+  } else {
+    measured[0] = std::max(measured[0], diag->error_bound[0]);
   }
-  sampler_.Learn(diag->error_bound, measured, options_.order, BoundSampler::Row::Sampled);
-  BoundSampler::ClampSampled(kappa, diag->error_bound, measured, options_.order);
   std::copy(measured, measured + options_.order + 1, diag->error_bound);
 }
 
