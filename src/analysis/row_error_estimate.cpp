@@ -19,6 +19,9 @@ constexpr double kDerivativeSafety = 4;
 // worst-case solve error (step 3 of the header): 2 halved the piston's jerk bound
 // below its error at --tol 1e-13 (python/tests/test_error_bounds.py), 4 holds.
 constexpr double kRoundoffUnits = 4;
+// A set-aside equation's scaled residual beyond this many units of long double's
+// round-off: the geometry does not satisfy it exactly (PositionError).
+constexpr double kInconsistentUnits = 64;
 
 // max-abs of a ω'-layout vector with translations divided by the characteristic length.
 double ScaledNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& col_scales) {
@@ -27,19 +30,30 @@ double ScaledNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& col_scales) {
   return m;
 }
 
+// Tilde (§1.1) in long double.
+Eigen::Matrix<long double, 3, 3> TildeExtended(const Vec3& a) {
+  Eigen::Matrix<long double, 3, 3> t;
+  t << 0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0;
+  return t;
+}
+
 }  // namespace
 
 RowErrorEstimator::RowErrorEstimator(const ConstraintSystem& sys, int order)
     : sys_(sys), order_(order), ext_poses_(sys.num_bodies()), ext_drivers_(sys.model().drivers.size()), col_scales_(DimensionlessColumnScales(sys)), seed_(order + 1), roundoff_(order + 1), delta_(order + 1),
       scale_(order + 1, 0.0), driver_scale_(order + 1, std::vector<double>(sys.model().drivers.size(), 0.0)),
       row_driver_(sys.num_rows(), -1), unit_excess_(sys.num_bodies(), 0.0) {
-  ext_phi_.resize(sys.num_rows());
+  quad_poses_.resize(sys.num_bodies());
+  quad_phi_.resize(sys.num_rows());
   const auto& entries = sys.entries();
   for (size_t e = 0; e < entries.size(); ++e) {
     if (!entries[e].from_driver) continue;
     const int end = e + 1 < entries.size() ? entries[e + 1].first_row : sys.num_rows();
     for (int r = entries[e].first_row; r < end; ++r) row_driver_[r] = entries[e].source;
   }
+  jet_poses_.resize(sys.num_bodies());
+  jet_drivers_.resize(sys.model().drivers.size());
+  jet_phi_.resize(sys.num_rows());
   plus_state_ = std::make_unique<SystemState>(sys);
   minus_state_ = std::make_unique<SystemState>(sys);
   const int n = 6 * sys.num_bodies();
@@ -70,6 +84,12 @@ bool RowErrorEstimator::PositionError(KinematicsWorkspace& ws, const SystemState
     jac_ = std::make_unique<SparseJacobian>(sys_, Formulation::Omega, rows_);
     row_scales_ = RowScales(sys_, rows_);
     rhs_.resize(rows_.size());
+    set_aside_.clear();
+    std::vector<char> active(sys_.num_rows(), 0);
+    for (int r : rows_) active[r] = 1;
+    for (int r = 0; r < sys_.num_rows(); ++r)
+      if (!active[r]) set_aside_.push_back(r);
+    set_aside_scales_ = RowScales(sys_, set_aside_);
   }
   jac_->Fill(sys_, s);
   const double norm = DimensionlessNorm(jac_->matrix(), row_scales_, col_scales_);
@@ -87,23 +107,46 @@ bool RowErrorEstimator::PositionError(KinematicsWorkspace& ws, const SystemState
   inverse = std::max(inverse, probe_.cwiseQuotient(col_scales_).norm());
   *kappa = std::max(*kappa, norm * inverse);
   if (!ws.factorization().SolveLinearTranspose(probe_, &left_) || !left_.allFinite()) return false;
-  // The pose's actual error: Φ_q⁻¹Φ with Φ in long double at the stored pose (§9),
-  // the residual Newton in double cannot see below its own round-off. Of a rigid pose:
-  // p normalized there. A stored p is unit only to round-off, and A(p) of §1.2 then
-  // stretches the body by |p|² − 1, which the residual would read as a displacement
-  // amplified up to κ (100× the piston's real error after the long-double phase);
-  // the stretch is propagated apart, as unit_excess_ (Moved).
+  return PoseError(ws, s);
+}
+
+// The stored pose with each p normalized, in long double (ext_poses_) and in quadruple
+// precision (quad_poses_); unit_excess_ = |p| − 1. A stored p is unit only to
+// round-off, and A(p) of §1.2 then stretches the body by |p|² − 1, which the residual
+// would read as a displacement amplified up to κ (100× the piston's real error after
+// the long-double phase); the stretch is propagated apart, as unit_excess_ (Moved).
+void RowErrorEstimator::NormalizedPoses(const SystemState& s) {
   for (size_t b = 0; b < s.bodies.size(); ++b) {
     ext_poses_[b] = ExtendedPose::Of(s.bodies[b]);
     const Real norm = ext_poses_[b].p.norm();
     unit_excess_[b] = static_cast<double>(norm - 1);
     ext_poses_[b].p /= norm;
     ext_poses_[b].A = RotationMatrix(ext_poses_[b].p);
+    Eigen::Matrix<Quad, 4, 1> p = s.bodies[b].p.cast<Quad>();
+    p /= QuadSqrt(p.squaredNorm());
+    quad_poses_[b].r = s.bodies[b].r[0].cast<Quad>();
+    quad_poses_[b].A = RotationMatrix(p);
   }
+}
+
+// The pose's actual error pose_error_ = Φ_q⁻¹Φ(q̂) at the normalized pose, the residual
+// Newton in double cannot see below its own round-off. Φ in quadruple precision (§8,
+// "Measured", step 1): near a singular position long double's round-off of Φ, solved
+// through Φ_q, is as large as the error itself (the N-four-bar's rockers turning
+// against the crank: 1.6e-17 to 5.9e-17 rad where it is exactly 0). And whether the
+// pose leaves a set-aside equation unsatisfied beyond round-off: then the stored
+// geometry is movable only to its rounding (Bennett's condition in double), and what it
+// describes is the design's motion only to that (geometry_rounding_, RoundOff).
+bool RowErrorEstimator::PoseError(KinematicsWorkspace& ws, const SystemState& s) {
+  NormalizedPoses(s);
   EvalDriverValuesExtended(sys_.model(), s.t, &ext_drivers_);
-  CalcPhiExtended(sys_, ext_poses_, ext_drivers_, s.angle_ref, &ext_phi_);
-  for (size_t r = 0; r < rows_.size(); ++r) rhs_[r] = static_cast<double>(ext_phi_[rows_[r]]);
+  CalcPhiQuad(sys_, quad_poses_, ext_poses_, ext_drivers_, s.angle_ref, &quad_phi_);
+  for (size_t r = 0; r < rows_.size(); ++r) rhs_[r] = static_cast<double>(quad_phi_[rows_[r]]);
   if (!ws.factorization().SolveLinear(rhs_, &pose_error_) || !pose_error_.allFinite()) return false;
+  geometry_rounding_ = false;
+  for (size_t a = 0; a < set_aside_.size(); ++a)
+    if (std::abs(static_cast<double>(quad_phi_[set_aside_[a]])) * set_aside_scales_[a] > kInconsistentUnits * kExtendedRoundoff)
+      geometry_rounding_ = true;
   return true;
 }
 
@@ -159,37 +202,91 @@ void RowErrorEstimator::Propagate(KinematicsWorkspace& ws, const SystemState& s,
   if (!ws.factorization().SolveLinear(rhs_, &delta_[k]) || !delta_[k].allFinite()) delta_[k].setZero();
 }
 
-// seed_[k] = Φ_q⁻¹ R_k(s): the order-k solve's own error (its residual, evaluated with
-// the round-off that made it), k = 1..order, before the chain moves jac_ off s; and
-// roundoff_[k] (RoundOff).
+// The pose along the computed derivatives as Taylor series in long double, at the
+// normalized orientation PositionError left in ext_poses_: r(τ) = Σ r^(k) τ^k/k!, and
+// A(τ) from A' = A ω̃'(τ) term by term, a_{k+1} = Σ_{j≤k} a_j ω̃'_{k−j} / (k+1) with
+// ω'_m = ω'^(m)/m!; the drivers' series as the step used them (their value in long
+// double). jet_phi_ = Φ on them: its k-th coefficient times k! is d^kΦ/dt^k =
+// Φ_q q^(k) − RHS_k at the computed orders ≤ k. False where a family's series is not
+// finite (an angle at a zero-length vector).
+bool RowErrorEstimator::JetResiduals(const SystemState& s) {
+  static constexpr long double kFactorial[] = {1, 1, 2, 6, 24};
+  for (size_t b = 0; b < s.bodies.size(); ++b) {
+    const BodyKinematics& body = s.bodies[b];
+    Eigen::Matrix<long double, 3, 3> a[kMaxOrder + 1];
+    a[0] = ext_poses_[b].A;
+    for (int k = 0; k < order_; ++k) {
+      a[k + 1].setZero();
+      for (int j = 0; j <= k; ++j) a[k + 1] += a[j] * TildeExtended(body.w[k - j]) / kFactorial[k - j];
+      a[k + 1] /= k + 1;
+    }
+    JetPose& pose = jet_poses_[b];
+    for (int i = 0; i < 3; ++i) {
+      pose.r[i] = ExtendedJet(0);
+      for (int k = 0; k <= order_; ++k) pose.r[i].c[k] = body.r[k][i] / kFactorial[k];
+      for (int j = 0; j < 3; ++j) {
+        pose.A(i, j) = ExtendedJet(0);
+        for (int k = 0; k <= order_; ++k) pose.A(i, j).c[k] = a[k](i, j);
+      }
+    }
+  }
+  for (size_t d = 0; d < jet_drivers_.size(); ++d) {
+    jet_drivers_[d] = ExtendedJet(ext_drivers_[d]);
+    for (int k = 1; k <= order_; ++k) jet_drivers_[d].c[k] = s.driver_values[d].c[k];
+  }
+  CalcPhiJets(sys_, jet_poses_, jet_drivers_, s.angle_ref, &jet_phi_);
+  for (int row : rows_)
+    for (int k = 1; k <= order_; ++k)
+      if (!std::isfinite(jet_phi_[row].c[k])) return false;
+  return true;
+}
+
+// seed_[k] = Φ_q⁻¹ R_k(s): the order-k solve's own error, k = 1..order, before the chain
+// moves jac_ off s; R_k = Φ_q q̂^(k) − RHS_k from the series (JetResiduals: in long
+// double, so that R_k holds the step's whole round-off — its Φ_q and RHS_k evaluated in
+// double, its back-solve — and not the round-off of evaluating R_k), else evaluated in
+// double as the step did (then the round-off R_k cannot see is bounded: RoundOff).
+// And roundoff_[k] (RoundOff).
 bool RowErrorEstimator::SolveErrors(KinematicsWorkspace& ws, const SystemState& s) {
+  static constexpr double kFactorial[] = {1, 1, 2, 6, 24};
+  const bool exact = JetResiduals(s);
   for (int k = 1; k <= order_; ++k) {
     OrderUnknowns(s, k);
     CalcRhs(sys_, s, k, Formulation::Omega, &full_);
-    plus_.noalias() = jac_->matrix() * x_;
-    for (size_t r = 0; r < rows_.size(); ++r) plus_[r] -= full_[rows_[r]];
+    if (exact) {
+      plus_.resize(rows_.size());
+      for (size_t r = 0; r < rows_.size(); ++r) plus_[r] = static_cast<double>(jet_phi_[rows_[r]].c[k] * kFactorial[k]);
+    } else {
+      plus_.noalias() = jac_->matrix() * x_;
+      for (size_t r = 0; r < rows_.size(); ++r) plus_[r] -= full_[rows_[r]];
+    }
     if (!ws.factorization().SolveLinear(plus_, &seed_[k]) || !seed_[k].allFinite()) return false;
-    if (!RoundOff(ws, k)) return false;
+    if (!RoundOff(ws, k, exact)) return false;
   }
   return true;
 }
 
-// roundoff_[k] = Φ_q⁻¹ρ: the error a solve's round-off can leave, which the sampled
-// residual of seed_ does not see (it is evaluated with the same round-off). ρ_r is
-// kRoundoffUnits·u times the row's magnitudes — Σ_j |J_rj x_j| (the back-solve's
-// backward error) plus |RHS_r| plus, on a driver's row, the largest |f^(k)| along the
-// run (f^(k) can cancel to nearly 0 from terms of that size: the piston toward its
-// dead centre) — with the signs of left_, so that ρ lies along the direction Φ_q⁻¹
-// amplifies most. x_ and full_ hold order k.
-bool RowErrorEstimator::RoundOff(KinematicsWorkspace& ws, int k) {
+// roundoff_[k] = Φ_q⁻¹ρ: the error a solve's round-off can leave that the sampled
+// residual of seed_ does not see, with the signs of left_, so that ρ lies along the
+// direction Φ_q⁻¹ amplifies most. On a driver's row, kRoundoffUnits·u times the largest
+// |f^(k)| along the run: the series of the driver functions are the double ones the
+// step used (f^(k) can cancel to nearly 0 from terms of that size: the piston toward
+// its dead centre). On every row, kRoundoffUnits units of the residual's own
+// evaluation times the row's magnitudes Σ_j |J_rj x_j| + |RHS_r|: long double's when
+// the residual came from the series, double's otherwise (then it is also the back-
+// solve's backward error, which a residual in double cannot resolve). x_ and full_
+// hold order k.
+bool RowErrorEstimator::RoundOff(KinematicsWorkspace& ws, int k, bool residual_exact) {
   rhs_.setZero();
   const Eigen::SparseMatrix<double>& J = jac_->matrix();
   for (int col = 0; col < J.outerSize(); ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(J, col); it; ++it) rhs_[it.row()] += std::abs(it.value() * x_[it.col()]);
+  const double unit = residual_exact && !geometry_rounding_ ? kExtendedRoundoff : kUnitRoundoff;
   for (size_t r = 0; r < rows_.size(); ++r) {
     const int driver = row_driver_[rows_[r]];
-    const double magnitude = rhs_[r] + std::abs(full_[rows_[r]]) + (driver >= 0 ? driver_scale_[k][driver] : 0.0);
-    rhs_[r] = kRoundoffUnits * kUnitRoundoff * magnitude * (left_[r] >= 0 ? 1 : -1);
+    const double magnitude = unit * (rhs_[r] + std::abs(full_[rows_[r]])) +
+                             (driver >= 0 ? kUnitRoundoff * driver_scale_[k][driver] : 0.0);
+    rhs_[r] = kRoundoffUnits * magnitude * (left_[r] >= 0 ? 1 : -1);
   }
   return ws.factorization().SolveLinear(rhs_, &roundoff_[k]) && roundoff_[k].allFinite();
 }

@@ -40,7 +40,10 @@ class RowErrorEstimator {
 
  private:
   bool PositionError(KinematicsWorkspace& ws, const SystemState& s, double* kappa);
-  bool RoundOff(KinematicsWorkspace& ws, int k);
+  void NormalizedPoses(const SystemState& s);
+  bool PoseError(KinematicsWorkspace& ws, const SystemState& s);
+  bool RoundOff(KinematicsWorkspace& ws, int k, bool residual_exact);
+  bool JetResiduals(const SystemState& s);
   bool SolveErrors(KinematicsWorkspace& ws, const SystemState& s);
   void Propagate(KinematicsWorkspace& ws, const SystemState& s, int k);
   void OrderUnknowns(const SystemState& s, int k);
@@ -50,7 +53,8 @@ class RowErrorEstimator {
   int order_;
   std::vector<ExtendedPose> ext_poses_;
   std::vector<Real> ext_drivers_;
-  Eigen::Matrix<Real, Eigen::Dynamic, 1> ext_phi_;
+  std::vector<QuadPose> quad_poses_;
+  std::vector<Quad> quad_phi_;
   std::vector<int> rows_;
   std::unique_ptr<SparseJacobian> jac_;
   std::unique_ptr<SystemState> plus_state_, minus_state_;
@@ -64,6 +68,11 @@ class RowErrorEstimator {
   std::vector<double> unit_excess_;     // per body: |p| − 1 of the stored Euler parameters
   double stretch_ = 0;                  // the multiple of unit_excess_ the chain moves along
   Eigen::VectorXd left_;                // Φ_q⁻ᵀ probe_: signs of the most amplified direction
+  std::vector<int> set_aside_;          // the system rows not solved (redundant), and their scales
+  Eigen::VectorXd set_aside_scales_;
+  bool geometry_rounding_ = false;      // a set-aside row unsatisfied beyond round-off (RoundOff)
+  std::vector<JetPose> jet_poses_;      // per body: the pose as series along the computed derivatives
+  std::vector<ExtendedJet> jet_drivers_, jet_phi_;  // per driver, per system row
   double h_ = 1e-6;
 };
 

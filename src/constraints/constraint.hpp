@@ -17,6 +17,8 @@
 #include <string>
 
 #include "constraints/body_kinematics.hpp"
+#include "math/extended_jet.hpp"
+#include "math/quad.hpp"
 #include "model/model.hpp"
 
 namespace mechkin {
@@ -109,6 +111,55 @@ struct ExtendedInput {
   double AngleRef(int a) const { return a == 0 ? angle_ref : more_angle_refs[a - 1]; }
 };
 
+/// A body pose in quadruple precision (math/quad.hpp): what Φ reads, for the pose
+/// error of the measured error bounds (constraints.md §8, "Measured", step 1).
+struct QuadPose {
+  Eigen::Matrix<Quad, 3, 1> r = Eigen::Matrix<Quad, 3, 1>::Zero();
+  Eigen::Matrix<Quad, 3, 3> A = Eigen::Matrix<Quad, 3, 3>::Identity();
+
+  Eigen::Matrix<Quad, 3, 1> Point(const Vec3& s) const { return r + A * s.cast<Quad>(); }
+  Eigen::Matrix<Quad, 3, 1> Vector(const Vec3& a) const { return A * a.cast<Quad>(); }
+};
+
+/// What a family's Φ reads in quadruple precision (as ExtendedInput).
+struct QuadInput {
+  const QuadPose& i;
+  const QuadPose& j;
+  Quad f = 0;             // driver function value (SI); zero for joints
+  double angle_ref = 0;   // as in ConstraintInput
+  std::array<const QuadPose*, kMaxSides - 2> more{};
+  std::array<double, kMaxAngles - 1> more_angle_refs{};
+
+  const QuadPose& Side(int side) const { return side == 0 ? i : side == 1 ? j : *more[side - 2]; }
+  double AngleRef(int a) const { return a == 0 ? angle_ref : more_angle_refs[a - 1]; }
+};
+
+/// A body's pose as Taylor series in time (extended precision) along the computed
+/// derivatives: Φ on it gives d^kΦ/dt^k = Φ_q q^(k) − RHS_k for every order at once
+/// (constraints.md §8, "Measured", step 3).
+struct JetPose {
+  using Vec3J = Eigen::Matrix<ExtendedJet, 3, 1>;
+  using Mat3J = Eigen::Matrix<ExtendedJet, 3, 3>;
+  Vec3J r = Vec3J::Constant(ExtendedJet(0));
+  Mat3J A = Mat3J::Identity();
+
+  Vec3J Point(const Vec3& s) const { return r + A * s.cast<ExtendedJet>(); }
+  Vec3J Vector(const Vec3& a) const { return A * a.cast<ExtendedJet>(); }
+};
+
+/// What a family's Φ reads on Taylor series (as ExtendedInput).
+struct JetInput {
+  const JetPose& i;
+  const JetPose& j;
+  ExtendedJet f;          // driver function value and derivatives (SI); zero for joints
+  double angle_ref = 0;   // as in ConstraintInput
+  std::array<const JetPose*, kMaxSides - 2> more{};
+  std::array<double, kMaxAngles - 1> more_angle_refs{};
+
+  const JetPose& Side(int side) const { return side == 0 ? i : side == 1 ? j : *more[side - 2]; }
+  double AngleRef(int a) const { return a == 0 ? angle_ref : more_angle_refs[a - 1]; }
+};
+
 class Constraint {
  public:
   Constraint(BodyIndex body_i, BodyIndex body_j, int size) : size_(size) {
@@ -127,6 +178,11 @@ class Constraint {
   virtual void CalcPhi(const ConstraintInput& in, double* phi) const = 0;
   /// The same Φ in extended precision (the families share one template for both).
   virtual void CalcPhiExtended(const ExtendedInput& in, Real* phi) const = 0;
+  /// The same Φ on Taylor series in time (the families' one template again).
+  virtual void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const = 0;
+  /// The same Φ in quadruple precision; false for the families that read angles
+  /// (atan2 has no quadruple-precision form here): the caller uses CalcPhiExtended's.
+  virtual bool CalcPhiQuad(const QuadInput&, Quad*) const { return false; }
   virtual void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const = 0;
   /// RHS_k, ω' version, k = 1..4. Kinematics of orders < k must be set in `in`.
   virtual void CalcRhs(const ConstraintInput& in, int k, double* rhs) const = 0;

@@ -32,6 +32,7 @@ class CouplerConstraint : public Constraint {
   CouplerConstraint(const std::vector<CoordinateTerm>& terms, double constant);
   void CalcPhi(const ConstraintInput& in, double* phi) const override { PhiOf(in, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { PhiOf(in, phi); }
+  void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { PhiOf(in, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;

@@ -24,6 +24,8 @@ class SphericalConstraint : public Constraint {
       : Constraint(i, j, 3), s_i_(s_i), s_j_(s_j) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  bool CalcPhiQuad(const QuadInput& in, Quad* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); return true; }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
@@ -50,6 +52,8 @@ class DistanceConstraint : public Constraint {
       : Constraint(i, j, 1), s_i_(s_i), s_j_(s_j), length_(length) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  bool CalcPhiQuad(const QuadInput& in, Quad* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); return true; }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
@@ -80,6 +84,8 @@ class Dot1Constraint : public Constraint {
       : Constraint(i, j, 1), a_i_(a_i), a_j_(a_j) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  bool CalcPhiQuad(const QuadInput& in, Quad* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); return true; }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
@@ -104,6 +110,8 @@ class Dot2Constraint : public Constraint {
       : Constraint(i, j, 1), a_i_(a_i), s_i_(s_i), s_j_(s_j) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  bool CalcPhiQuad(const QuadInput& in, Quad* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); return true; }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
@@ -128,6 +136,8 @@ class Dot2DistanceDriver : public Constraint {
       : Constraint(i, j, 1), dot2_(i, j, a_i, s_i, s_j) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  bool CalcPhiQuad(const QuadInput& in, Quad* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); return true; }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
@@ -154,6 +164,7 @@ class RotationDriver : public Constraint {
       : Constraint(i, j, 1), fi_(frame_i.f), gi_(frame_i.g), fj_(frame_j.f), hi_(frame_i.h), hj_(frame_j.h) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;
@@ -202,6 +213,7 @@ class ScrewConstraint : public Constraint {
         lambda_s_(pitch / (2 * M_PI)) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
+  void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override;
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override;
   void CalcKappa(const ConstraintInput& in, const double* lambda, KappaTerms* kappa) const override;

@@ -196,6 +196,49 @@ void CalcPhiExtended(const ConstraintSystem& sys, const std::vector<ExtendedPose
   }
 }
 
+// As CalcPhiExtended, on series: the ground is the constant identity pose.
+void CalcPhiJets(const ConstraintSystem& sys, const std::vector<JetPose>& poses,
+                 const std::vector<ExtendedJet>& drivers, const std::vector<double>& angle_ref,
+                 std::vector<ExtendedJet>* phi) {
+  static const JetPose kGroundPose;
+  phi->resize(sys.num_rows());
+  const auto pose = [&](BodyIndex b) -> const JetPose& { return b == kGround ? kGroundPose : poses[b]; };
+  const auto& entries = sys.entries();
+  for (size_t e = 0; e < entries.size(); ++e) {
+    const Constraint& c = *entries[e].constraint;
+    JetInput in{pose(c.body_i()), pose(c.body_j()),
+                entries[e].from_driver ? drivers[entries[e].source] : ExtendedJet(0), angle_ref[e]};
+    for (int side = 2; side < c.num_sides(); ++side) in.more[side - 2] = &pose(c.body(side));
+    if (entries[e].extra_angle_slot >= 0)
+      for (int a = 1; a < c.NumAngles(); ++a) in.more_angle_refs[a - 1] = angle_ref[entries[e].extra_angle_slot + a - 1];
+    c.CalcPhiJet(in, phi->data() + entries[e].first_row);
+  }
+}
+
+void CalcPhiQuad(const ConstraintSystem& sys, const std::vector<QuadPose>& poses,
+                 const std::vector<ExtendedPose>& extended_poses, const std::vector<Real>& driver_values,
+                 const std::vector<double>& angle_ref, std::vector<Quad>* phi) {
+  static const QuadPose kGroundPose;
+  static const ExtendedPose kGroundExtended;
+  phi->resize(sys.num_rows());
+  const auto pose = [&](BodyIndex b) -> const QuadPose& { return b == kGround ? kGroundPose : poses[b]; };
+  const auto extended = [&](BodyIndex b) -> const ExtendedPose& { return b == kGround ? kGroundExtended : extended_poses[b]; };
+  const auto& entries = sys.entries();
+  for (size_t e = 0; e < entries.size(); ++e) {
+    const Constraint& c = *entries[e].constraint;
+    const Real f = entries[e].from_driver ? driver_values[entries[e].source] : Real(0);
+    Quad* out = phi->data() + entries[e].first_row;
+    if (c.num_sides() == 2 && c.CalcPhiQuad(QuadInput{pose(c.body_i()), pose(c.body_j()), Quad(f), angle_ref[e]}, out)) continue;
+    ExtendedInput in{extended(c.body_i()), extended(c.body_j()), f, angle_ref[e]};
+    for (int side = 2; side < c.num_sides(); ++side) in.more[side - 2] = &extended(c.body(side));
+    if (entries[e].extra_angle_slot >= 0)
+      for (int a = 1; a < c.NumAngles(); ++a) in.more_angle_refs[a - 1] = angle_ref[entries[e].extra_angle_slot + a - 1];
+    Real row[kMaxRows];
+    c.CalcPhiExtended(in, row);
+    for (int r = 0; r < c.size(); ++r) out[r] = static_cast<Quad>(row[r]);
+  }
+}
+
 void CalcJacobianDense(const ConstraintSystem& sys, const SystemState& s, Formulation f, Eigen::MatrixXd* J) {
   const int n = sys.num_bodies(), m = sys.num_rows();
   const int nc = f == Formulation::Omega ? 6 : 7;

@@ -94,6 +94,17 @@ void EvalDriverValuesExtended(const Model& model, double t, std::vector<Real>* v
 void CalcPhiExtended(const ConstraintSystem& sys, const std::vector<ExtendedPose>& poses,
                      const std::vector<Real>& driver_values, const std::vector<double>& angle_ref,
                      Eigen::Matrix<Real, Eigen::Dynamic, 1>* phi);
+/// Φ (num_rows) on Taylor series in time: per-body poses and driver functions as series
+/// (constraints.md §8, "Measured", step 3), with the state's angle references.
+void CalcPhiJets(const ConstraintSystem& sys, const std::vector<JetPose>& poses,
+                 const std::vector<ExtendedJet>& drivers, const std::vector<double>& angle_ref,
+                 std::vector<ExtendedJet>* phi);
+/// Φ (num_rows) in quadruple precision at per-body poses (constraints.md §8, "Measured",
+/// step 1); the families that read angles (CalcPhiQuad false) in extended precision at
+/// `extended_poses`, the same poses rounded.
+void CalcPhiQuad(const ConstraintSystem& sys, const std::vector<QuadPose>& poses,
+                 const std::vector<ExtendedPose>& extended_poses, const std::vector<Real>& driver_values,
+                 const std::vector<double>& angle_ref, std::vector<Quad>* phi);
 /// Updates the multi-turn angle references to the current angles (after a step is accepted).
 void UpdateAngleReferences(const ConstraintSystem& sys, SystemState* s);
 

@@ -483,6 +483,7 @@ class CorruptedSpherical : public Constraint {
       : Constraint(inner->body_i(), inner->body_j(), inner->size()), inner_(std::move(inner)) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { inner_->CalcPhi(in, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { inner_->CalcPhiExtended(in, phi); }
+  void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { inner_->CalcPhiJet(in, phi); }
   void CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const override { inner_->CalcJacobian(in, J); }
   void CalcRhs(const ConstraintInput& in, int k, double* rhs) const override {
     inner_->CalcRhs(in, k, rhs);
