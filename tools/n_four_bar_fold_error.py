@@ -1,14 +1,17 @@
 #!/usr/bin/python3
 """The N-four-bar's pose error in its fold direction, exactly, on the rows near the
-singular position at -90 deg where the jerk's default error bound is more than 100x
-its error (docs/constraints.md §8, "Known gap"; issue 23 item 2).
+singular positions at +-90 deg, next to the jerk's error and default error bound
+(docs/constraints.md §8, "Measured"; issue 23 item 2).
 
-At -90 deg the branches meet where the rockers turn against the crank, so the pose
-error that the derivatives amplify most is the rockers' turn relative to the crank
+At +-90 deg Φ_q loses rank in the direction of the rockers turning against the crank
+(the folded branches), so the pose error that the derivatives amplify most is the rockers' turn relative to the crank
 (and the couplers' turn). This prints that error computed exactly, in rational
 arithmetic from the stored Euler parameters (a z-rotation: p = (cos a/2, 0, 0, sin a/2)),
-next to each row's jerk error/bound; the measured bounds resolve it only to long
-double's round-off solved through the Jacobian (about 1e-17 to 6e-17 rad on these rows).
+next to each row's jerk error/bound. On 14 of these rows each rocker's stored
+orientation is bitwise the crank's, an error of exactly 0 there; a residual of Φ in
+long double resolves it only to its round-off solved through the Jacobian (about
+1e-17 to 6e-17 rad on these rows), which made those bounds up to 3558x the error
+before the measured bounds evaluated Φ in quadruple precision.
 
     PYTHONPATH=build/python /usr/bin/python3 tools/n_four_bar_fold_error.py
 """

@@ -30,13 +30,6 @@ double ScaledNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& col_scales) {
   return m;
 }
 
-// Tilde (§1.1) in long double.
-Eigen::Matrix<long double, 3, 3> TildeExtended(const Vec3& a) {
-  Eigen::Matrix<long double, 3, 3> t;
-  t << 0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0;
-  return t;
-}
-
 }  // namespace
 
 RowErrorEstimator::RowErrorEstimator(const ConstraintSystem& sys, int order)
@@ -202,34 +195,13 @@ void RowErrorEstimator::Propagate(KinematicsWorkspace& ws, const SystemState& s,
   if (!ws.factorization().SolveLinear(rhs_, &delta_[k]) || !delta_[k].allFinite()) delta_[k].setZero();
 }
 
-// The pose along the computed derivatives as Taylor series in long double, at the
-// normalized orientation PositionError left in ext_poses_: r(τ) = Σ r^(k) τ^k/k!, and
-// A(τ) from A' = A ω̃'(τ) term by term, a_{k+1} = Σ_{j≤k} a_j ω̃'_{k−j} / (k+1) with
-// ω'_m = ω'^(m)/m!; the drivers' series as the step used them (their value in long
-// double). jet_phi_ = Φ on them: its k-th coefficient times k! is d^kΦ/dt^k =
-// Φ_q q^(k) − RHS_k at the computed orders ≤ k. False where a family's series is not
-// finite (an angle at a zero-length vector).
+// The pose along the computed derivatives as Taylor series in long double (JetPoseOf),
+// at the normalized orientation PositionError left in ext_poses_; the drivers' series
+// as the step used them (their value in long double). jet_phi_ = Φ on them: its k-th
+// coefficient times k! is d^kΦ/dt^k = Φ_q q^(k) − RHS_k at the computed orders ≤ k.
+// False where a family's series is not finite (an angle at a zero-length vector).
 bool RowErrorEstimator::JetResiduals(const SystemState& s) {
-  static constexpr long double kFactorial[] = {1, 1, 2, 6, 24};
-  for (size_t b = 0; b < s.bodies.size(); ++b) {
-    const BodyKinematics& body = s.bodies[b];
-    Eigen::Matrix<long double, 3, 3> a[kMaxOrder + 1];
-    a[0] = ext_poses_[b].A;
-    for (int k = 0; k < order_; ++k) {
-      a[k + 1].setZero();
-      for (int j = 0; j <= k; ++j) a[k + 1] += a[j] * TildeExtended(body.w[k - j]) / kFactorial[k - j];
-      a[k + 1] /= k + 1;
-    }
-    JetPose& pose = jet_poses_[b];
-    for (int i = 0; i < 3; ++i) {
-      pose.r[i] = ExtendedJet(0);
-      for (int k = 0; k <= order_; ++k) pose.r[i].c[k] = body.r[k][i] / kFactorial[k];
-      for (int j = 0; j < 3; ++j) {
-        pose.A(i, j) = ExtendedJet(0);
-        for (int k = 0; k <= order_; ++k) pose.A(i, j).c[k] = a[k](i, j);
-      }
-    }
-  }
+  for (size_t b = 0; b < s.bodies.size(); ++b) jet_poses_[b] = JetPoseOf(s.bodies[b], ext_poses_[b].A, order_);
   for (size_t d = 0; d < jet_drivers_.size(); ++d) {
     jet_drivers_[d] = ExtendedJet(ext_drivers_[d]);
     for (int k = 1; k <= order_; ++k) jet_drivers_[d].c[k] = s.driver_values[d].c[k];

@@ -147,6 +147,11 @@ struct JetPose {
   Vec3J Vector(const Vec3& a) const { return A * a.cast<ExtendedJet>(); }
 };
 
+/// The pose of `body` as series to `order` (≤ kMaxOrder) at orientation A (its
+/// normalized one in long double): r(τ) = Σ r^(k) τ^k/k!, and A(τ) from A' = A ω̃'(τ)
+/// term by term, a_{k+1} = Σ_{j≤k} a_j ω̃'_{k−j} / (k+1) with ω'_m = ω'^(m)/m! (§1.4).
+JetPose JetPoseOf(const BodyKinematics& body, const Mat3R& A, int order);
+
 /// What a family's Φ reads on Taylor series (as ExtendedInput).
 struct JetInput {
   const JetPose& i;
