@@ -127,19 +127,21 @@ void RowErrorEstimator::NormalizedPoses(const SystemState& s) {
 // "Measured", step 1): near a singular position long double's round-off of Φ, solved
 // through Φ_q, is as large as the error itself (the N-four-bar's rockers turning
 // against the crank: 1.6e-17 to 5.9e-17 rad where it is exactly 0). And whether the
-// pose leaves a set-aside equation unsatisfied beyond round-off: then the stored
-// geometry is movable only to its rounding (Bennett's condition in double), and what it
-// describes is the design's motion only to that (geometry_rounding_, RoundOff).
+// pose leaves a set-aside (redundant) equation unsatisfied beyond long double's
+// round-off: then the stored model does not move exactly — its redundancy holds only to
+// the rounding of its numbers (Bennett's condition in double; any redundant mechanism
+// outside the coordinate planes) — and the motion it stands for is known only to that
+// (aside_unsatisfied_, RoundOff).
 bool RowErrorEstimator::PoseError(KinematicsWorkspace& ws, const SystemState& s) {
   NormalizedPoses(s);
   EvalDriverValuesExtended(sys_.model(), s.t, &ext_drivers_);
   CalcPhiQuad(sys_, quad_poses_, ext_poses_, ext_drivers_, s.angle_ref, &quad_phi_);
   for (size_t r = 0; r < rows_.size(); ++r) rhs_[r] = static_cast<double>(quad_phi_[rows_[r]]);
   if (!ws.factorization().SolveLinear(rhs_, &pose_error_) || !pose_error_.allFinite()) return false;
-  geometry_rounding_ = false;
+  aside_unsatisfied_ = false;
   for (size_t a = 0; a < set_aside_.size(); ++a)
     if (std::abs(static_cast<double>(quad_phi_[set_aside_[a]])) * set_aside_scales_[a] > kInconsistentUnits * kExtendedRoundoff)
-      geometry_rounding_ = true;
+      aside_unsatisfied_ = true;
   return true;
 }
 
@@ -238,26 +240,27 @@ bool RowErrorEstimator::SolveErrors(KinematicsWorkspace& ws, const SystemState& 
   return true;
 }
 
-// roundoff_[k] = Φ_q⁻¹ρ: the error a solve's round-off can leave that the sampled
-// residual of seed_ does not see, with the signs of left_, so that ρ lies along the
-// direction Φ_q⁻¹ amplifies most. On a driver's row, kRoundoffUnits·u times the largest
-// |f^(k)| along the run: the series of the driver functions are the double ones the
-// step used (f^(k) can cancel to nearly 0 from terms of that size: the piston toward
-// its dead centre). On every row, kRoundoffUnits units of the residual's own
-// evaluation times the row's magnitudes Σ_j |J_rj x_j| + |RHS_r|: long double's when
-// the residual came from the series, double's otherwise (then it is also the back-
-// solve's backward error, which a residual in double cannot resolve). x_ and full_
-// hold order k.
+// roundoff_[k] = Φ_q⁻¹ρ: the error a solve's round-off can leave that the residual of
+// seed_ does not see, with the signs of left_, so that ρ lies along the direction Φ_q⁻¹
+// amplifies most. ρ_r is kRoundoffUnits units of round-off times the row's magnitudes
+// Σ_j |J_rj x_j| + |RHS_r|, plus on a driver's row the largest |f^(k)| along the run
+// (f^(k) can cancel to nearly 0 from terms of that size: the piston toward its dead
+// centre). The unit is long double's where the residual came from the series, but
+// double's on a driver's row (the drivers' series are the double ones the step used,
+// and how a row reads f is its family's: −f² for a driven distance), where the series
+// were not finite (the residual was then evaluated in double, which cannot resolve
+// the back-solve's backward error) and where the stored model does not move exactly
+// (aside_unsatisfied_). x_ and full_ hold order k.
 bool RowErrorEstimator::RoundOff(KinematicsWorkspace& ws, int k, bool residual_exact) {
   rhs_.setZero();
   const Eigen::SparseMatrix<double>& J = jac_->matrix();
   for (int col = 0; col < J.outerSize(); ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(J, col); it; ++it) rhs_[it.row()] += std::abs(it.value() * x_[it.col()]);
-  const double unit = residual_exact && !geometry_rounding_ ? kExtendedRoundoff : kUnitRoundoff;
+  const double unit = residual_exact && !aside_unsatisfied_ ? kExtendedRoundoff : kUnitRoundoff;
   for (size_t r = 0; r < rows_.size(); ++r) {
     const int driver = row_driver_[rows_[r]];
-    const double magnitude = unit * (rhs_[r] + std::abs(full_[rows_[r]])) +
-                             (driver >= 0 ? kUnitRoundoff * driver_scale_[k][driver] : 0.0);
+    const double row = rhs_[r] + std::abs(full_[rows_[r]]);
+    const double magnitude = driver >= 0 ? kUnitRoundoff * (row + driver_scale_[k][driver]) : unit * row;
     rhs_[r] = kRoundoffUnits * magnitude * (left_[r] >= 0 ? 1 : -1);
   }
   return ws.factorization().SolveLinear(rhs_, &roundoff_[k]) && roundoff_[k].allFinite();

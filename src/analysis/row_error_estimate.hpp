@@ -5,13 +5,15 @@
 // position misjudges the error by orders of magnitude either way, while the k-th
 // derivative's actual error there grows like k!/σ_min^k. This estimator measures
 // instead, at the solved, factorized row:
-//   1. the pose's error ε = Φ_q⁻¹Φ(q̂), Φ in long double at the pose with its Euler
+//   1. the pose's error ε = Φ_q⁻¹Φ(q̂), Φ in quadruple precision (math/quad.hpp; long
+//      double for the families that read angles) at the pose with its Euler
 //      parameters normalized, and apart the stretch |p| − 1 of each stored p;
 //   2. their propagation into every derivative, q^(k) = F_k(q): δq^(k) = DF_k·(2ε) from
 //      the identities of the parameter sensitivities (sensitivity.hpp) with the pose
 //      moved instead of a parameter, central differences at ±h;
-//   3. each order's own solve error: the sampled Φ_q⁻¹(Φ_q q̂^(k) − RHS_k) plus the
-//      worst the round-off of the solve and of RHS_k can leave (RoundOff);
+//   3. each order's own solve error Φ_q⁻¹R_k, R_k = d^kΦ/dt^k at the computed orders
+//      from Φ on Taylor series in long double (JetResiduals), plus the worst what R_k
+//      cannot see can leave (RoundOff);
 // and states e_0 = max(2‖ε‖, 2 max|p| − 1, κ·ε_ld), e_k = 4‖δq^(k)‖/‖q^(k)‖_max + 8uκ,
 // ‖q^(k)‖_max the largest magnitude of order k seen along the run. Max-abs norms,
 // translations over the characteristic length. No allocation per row once the
@@ -70,7 +72,7 @@ class RowErrorEstimator {
   Eigen::VectorXd left_;                // Φ_q⁻ᵀ probe_: signs of the most amplified direction
   std::vector<int> set_aside_;          // the system rows not solved (redundant), and their scales
   Eigen::VectorXd set_aside_scales_;
-  bool geometry_rounding_ = false;      // a set-aside row unsatisfied beyond round-off (RoundOff)
+  bool aside_unsatisfied_ = false;      // a set-aside row unsatisfied beyond round-off (RoundOff)
   std::vector<JetPose> jet_poses_;      // per body: the pose as series along the computed derivatives
   std::vector<ExtendedJet> jet_drivers_, jet_phi_;  // per driver, per system row
   double h_ = 1e-6;

@@ -31,6 +31,18 @@ struct ExtendedJet {
   }
   ExtendedJet& operator*=(const ExtendedJet& b);
   ExtendedJet& operator/=(const ExtendedJet& b);
+
+  // UnwrapAngle's atan2 and round, found only by argument-dependent lookup (hidden
+  // friends): no other call in the namespace can pick them up through the implicit
+  // constructor.
+  /// atan2 of two series: the value from std::atan2, the rest from θ' = (x y' − y x')/(x² + y²)
+  /// integrated term by term. NaN coefficients at x = y = 0 (no angle there).
+  friend ExtendedJet atan2(const ExtendedJet& y, const ExtendedJet& x) { return Atan2(y, x); }
+  /// The whole turns UnwrapAngle adds: a constant, the value rounded.
+  friend ExtendedJet round(const ExtendedJet& a) { return ExtendedJet(std::round(a.c[0])); }
+
+ private:
+  static ExtendedJet Atan2(const ExtendedJet& y, const ExtendedJet& x);
 };
 
 inline ExtendedJet operator+(ExtendedJet a, const ExtendedJet& b) { return a += b; }
@@ -60,9 +72,7 @@ inline ExtendedJet operator/(const ExtendedJet& a, const ExtendedJet& b) {
 inline ExtendedJet& ExtendedJet::operator*=(const ExtendedJet& b) { return *this = *this * b; }
 inline ExtendedJet& ExtendedJet::operator/=(const ExtendedJet& b) { return *this = *this / b; }
 
-/// atan2 of two series: the value from std::atan2, the rest from θ' = (x y' − y x')/(x² + y²)
-/// integrated term by term. NaN coefficients at x = y = 0 (no angle there).
-inline ExtendedJet atan2(const ExtendedJet& y, const ExtendedJet& x) {
+inline ExtendedJet ExtendedJet::Atan2(const ExtendedJet& y, const ExtendedJet& x) {
   ExtendedJet dy, dx;  // the series of y' and x'
   for (int k = 0; k < kMaxOrder; ++k) {
     dy.c[k] = (k + 1) * y.c[k + 1];
@@ -74,9 +84,6 @@ inline ExtendedJet atan2(const ExtendedJet& y, const ExtendedJet& x) {
   for (int k = 1; k <= kMaxOrder; ++k) r.c[k] = rate.c[k - 1] / k;
   return r;
 }
-
-/// The whole turns UnwrapAngle adds: a constant, the value rounded.
-inline ExtendedJet round(const ExtendedJet& a) { return ExtendedJet(std::round(a.c[0])); }
 
 }  // namespace mechkin
 

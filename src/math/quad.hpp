@@ -34,6 +34,9 @@ struct NumTraits<mechkin::Quad> : GenericNumTraits<long double> {
   using Nested = mechkin::Quad;
   using Literal = mechkin::Quad;
   enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 0, ReadCost = 1, AddCost = 8, MulCost = 16 };
+  static inline Real epsilon() { return Real(1) / (Real(1ULL << 56) * Real(1ULL << 56)); }  // 2^-112
+  static inline Real dummy_precision() { return epsilon() * Real(1ULL << 40); }
+  static inline int digits10() { return 33; }
 };
 }  // namespace Eigen
 #endif

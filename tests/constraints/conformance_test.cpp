@@ -178,6 +178,25 @@ void CheckSeriesForms(const Constraint& c, const std::vector<const BodyTraj*>& s
   }
 }
 
+// Φ in extended precision (the accuracy phase of the position solve), on series and in
+// quadruple precision (the measured error bounds) against the independent Φ(t).
+void CheckPrecisionForms(const Constraint& c, const Case& cs, const BodyKinematics& ki, const BodyKinematics& kj,
+                         const std::vector<TJet>& phi_t, Errors* e) {
+  const int m = c.size();
+  const ExtendedPose xi = ExtendedPose::Of(ki), xj = ExtendedPose::Of(kj);
+  Real phi_x[kMaxRows];
+  c.CalcPhiExtended(ExtendedInput{xi, xj, static_cast<Real>(cs.f.c[0]), cs.angle_ref}, phi_x);
+  for (int r = 0; r < m; ++r)
+    e->phi_extended = std::max(e->phi_extended, RelErr(static_cast<double>(phi_x[r]), phi_t[r].c[0], 1 + std::abs(phi_t[r].c[0])));
+  const JetPose si = JetPoseOf(ki, xi.A, kMaxOrder), sj = JetPoseOf(kj, xj.A, kMaxOrder);
+  CheckSeriesForms(c, {&cs.bi, &cs.bj}, JetInput{si, sj, ToExtendedJet(cs.f), cs.angle_ref}, phi_t, e);
+  const QuadPose qi{ki.r[0].cast<Quad>(), ki.A.cast<Quad>()}, qj{kj.r[0].cast<Quad>(), kj.A.cast<Quad>()};
+  Quad phi_q[kMaxRows];
+  if (c.CalcPhiQuad(QuadInput{qi, qj, static_cast<Quad>(cs.f.c[0]), cs.angle_ref}, phi_q))
+    for (int r = 0; r < m; ++r)
+      e->phi_quad = std::max(e->phi_quad, RelErr(static_cast<double>(phi_q[r]), phi_t[r].c[0], 1 + std::abs(phi_t[r].c[0])));
+}
+
 Errors CheckCase(const Case& cs) {
   Errors e;
   const Constraint& c = *cs.c;
@@ -188,19 +207,7 @@ Errors CheckCase(const Case& cs) {
   double phi[kMaxRows];
   c.CalcPhi(in, phi);
   for (int r = 0; r < m; ++r) e.phi = std::max(e.phi, RelErr(phi[r], phi_t[r].c[0], 1 + std::abs(phi_t[r].c[0])));
-  // The same Φ in extended precision (the accuracy phase of the position solve).
-  const ExtendedPose xi = ExtendedPose::Of(ki), xj = ExtendedPose::Of(kj);
-  Real phi_x[kMaxRows];
-  c.CalcPhiExtended(ExtendedInput{xi, xj, static_cast<Real>(cs.f.c[0]), cs.angle_ref}, phi_x);
-  for (int r = 0; r < m; ++r)
-    e.phi_extended = std::max(e.phi_extended, RelErr(static_cast<double>(phi_x[r]), phi_t[r].c[0], 1 + std::abs(phi_t[r].c[0])));
-  const JetPose si = JetPoseOf(ki, xi.A, kMaxOrder), sj = JetPoseOf(kj, xj.A, kMaxOrder);
-  CheckSeriesForms(c, {&cs.bi, &cs.bj}, JetInput{si, sj, ToExtendedJet(cs.f), cs.angle_ref}, phi_t, &e);
-  const QuadPose qi{ki.r[0].cast<Quad>(), ki.A.cast<Quad>()}, qj{kj.r[0].cast<Quad>(), kj.A.cast<Quad>()};
-  Quad phi_q[kMaxRows];
-  if (c.CalcPhiQuad(QuadInput{qi, qj, static_cast<Quad>(cs.f.c[0]), cs.angle_ref}, phi_q))
-    for (int r = 0; r < m; ++r)
-      e.phi_quad = std::max(e.phi_quad, RelErr(static_cast<double>(phi_q[r]), phi_t[r].c[0], 1 + std::abs(phi_t[r].c[0])));
+  CheckPrecisionForms(c, cs, ki, kj, phi_t, &e);
 
   // Jacobian blocks vs central differences on the manifold (body-frame rotation increments).
   JacobianBlocks J;
@@ -477,7 +484,6 @@ TEST(Conformance, Dot2DistanceDriver) { ExpectConforms(RunFamily([](auto& g, int
 TEST(Conformance, RotationDriver) { ExpectConforms(RunFamily(MakeRotationDriver)); }
 TEST(Conformance, ScrewDistanceAngle) { ExpectConforms(RunFamily(MakeScrew)); }
 
-// Near-parallel DOT_1 vectors: a_j within 1e-6 rad of a_i at t = 0.
 // Which families have the quadruple-precision Φ (the pose error of the measured bounds,
 // constraints.md §8): those that read no angle; the others answer false, and the
 // caller takes the long-double Φ. Its values: phi_quad in every family's harness.
@@ -493,6 +499,7 @@ TEST(Conformance, QuadruplePrecisionWhereNoAngleIsRead) {
   EXPECT_FALSE(MakeScrew(g, 0).c->CalcPhiQuad(in, phi));
 }
 
+// Near-parallel DOT_1 vectors: a_j within 1e-6 rad of a_i at t = 0.
 TEST(Conformance, Dot1NearParallel) {
   Errors worst;
   std::mt19937 g(99);
@@ -675,6 +682,24 @@ CouplerCase MakeCoupler(std::mt19937& g, int n, bool broken = false) {
 }
 
 // Φ, Φ_q (both versions) and κ against differences, RHS_k against the jets, per side.
+// A coupler's Φ on series (CheckSeriesForms), its sides' poses from their rates.
+void CheckCouplerSeries(const Constraint& c, const CouplerCase& cs, const std::vector<BodyKinematics>& kin,
+                        const ConstraintInput& in, const TJet& phi_t, Errors* e) {
+  std::vector<JetPose> series;
+  for (const BodyKinematics& k : kin) series.push_back(JetPoseOf(k, ExtendedPose::Of(k).A, kMaxOrder));
+  static const JetPose kGroundSeries;
+  static const BodyTraj kGroundTraj = [] { BodyTraj t; t.ground = true; return t; }();
+  auto ss = [&](int side) -> const JetPose& { return c.body(side) == kGround ? kGroundSeries : series[c.body(side)]; };
+  JetInput jin{ss(0), ss(1), ExtendedJet(0), in.angle_ref};
+  std::vector<const BodyTraj*> sides;
+  for (int side = 0; side < c.num_sides(); ++side) {
+    if (side >= 2) jin.more[side - 2] = &ss(side);
+    sides.push_back(c.body(side) == kGround ? &kGroundTraj : &cs.bodies[c.body(side)]);
+  }
+  jin.more_angle_refs = in.more_angle_refs;
+  CheckSeriesForms(c, sides, jin, {phi_t}, e);
+}
+
 Errors CheckCouplerCase(const CouplerCase& cs) {
   Errors e;
   const Constraint& c = *cs.c;
@@ -695,19 +720,7 @@ Errors CheckCouplerCase(const CouplerCase& cs) {
   Real phi_x;
   c.CalcPhiExtended(xin, &phi_x);
   e.phi_extended = RelErr(static_cast<double>(phi_x), phi_t.c[0], 1 + std::abs(phi_t.c[0]));
-  std::vector<JetPose> series;
-  for (size_t b = 0; b < kin.size(); ++b) series.push_back(JetPoseOf(kin[b], xp[b].A, kMaxOrder));
-  static const JetPose kGroundSeries;
-  static const BodyTraj kGroundTraj = [] { BodyTraj t; t.ground = true; return t; }();
-  auto ss = [&](int side) -> const JetPose& { return c.body(side) == kGround ? kGroundSeries : series[c.body(side)]; };
-  JetInput jin{ss(0), ss(1), ExtendedJet(0), in.angle_ref};
-  std::vector<const BodyTraj*> sides;
-  for (int side = 0; side < c.num_sides(); ++side) {
-    if (side >= 2) jin.more[side - 2] = &ss(side);
-    sides.push_back(c.body(side) == kGround ? &kGroundTraj : &cs.bodies[c.body(side)]);
-  }
-  jin.more_angle_refs = in.more_angle_refs;
-  CheckSeriesForms(c, sides, jin, {phi_t}, &e);
+  CheckCouplerSeries(c, cs, kin, in, phi_t, &e);
   JacobianBlocks J;
   c.CalcJacobian(in, &J);
   const double h = 1e-6;
