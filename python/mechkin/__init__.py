@@ -300,7 +300,7 @@ class Model:
         ends there, motion.stop.kind 'contact'; either way motion.contacts lists
         them; `run --on-contact`), error_bounds ('auto': measured near singular
         positions and on a sample of the other rows, which raises the condition
-        estimate's bounds where they fall short; 'measured': every row, 1.4-2.4x
+        estimate's bounds where they fall short; 'measured': every row, 1.1-3.7x
         the time; `run --error-bounds`). Out-of-range values raise ValueError with the
         CLI's message. start, end, steps replace the file's analysis span."""
         if request is None:

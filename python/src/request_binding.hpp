@@ -99,7 +99,7 @@ file has inertia or loads), sensitivity=[] (parameter names), max_iterations=25,
 on_limit='stop' ('report': a joint reaching its limits is noted and the run goes on;
 the CLI's --on-limit), on_contact='report' ('stop': the run ends at the first contact of
 a clearance output's bodies; the CLI's --on-contact), error_bounds='auto' (measured near
-singular positions and on a sample of the other rows; 'measured': every row, 1.4-2.4x
+singular positions and on a sample of the other rows; 'measured': every row, 1.1-3.7x
 the time; the CLI's --error-bounds).)doc")
       .def(py::init(&MakeRequest), py::arg("order") = 3, py::arg("tol") = 1e-10, py::arg("solver") = "newton",
            py::arg("formulation") = "omega", py::arg("bodies") = py::none(), py::arg("outputs") = py::none(),
@@ -145,7 +145,7 @@ the time; the CLI's --error-bounds).)doc")
             r.error_bounds = NamedOrThrow<mechkin::ErrorBoundsChoice>("error_bounds", s);
           },
           "rows whose error bounds are measured: 'auto' (near singular positions and a sample of the others) "
-          "or 'measured' (every row, 1.4-2.4x the time)")
+          "or 'measured' (every row, 1.1-3.7x the time)")
       .def(
           "is_valid",
           [](const RunRequest& r) {

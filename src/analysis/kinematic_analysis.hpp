@@ -51,7 +51,7 @@ struct AnalysisOptions {
   bool branch_guard = true;             // sub-step on a det Φ_q sign change or a far jump (off: plain Newton)
   // Every row's error bounds measured (row_error_estimate.hpp), not only near singular
   // positions and on a sample of the other rows (bound_sampling.hpp; docs/constraints.md §8),
-  // for 1.4–2.4× the run time (tools/error_bounds_cost.sh).
+  // for 1.1–3.7× the run time (tools/error_bounds_cost.sh).
   bool measure_every_row = false;
   // Bodies whose motion is asked for (table selection); empty = all. When it is a
   // strict subset, the position and derivative solves run block by block along the

@@ -22,6 +22,9 @@ constexpr double kRoundoffUnits = 4;
 // A set-aside equation's scaled residual beyond this many units of long double's
 // round-off: the geometry does not satisfy it exactly (PositionError).
 constexpr double kInconsistentUnits = 64;
+// PoseError's finer forms where long double's round-off through Φ_q could reach this
+// part of the pose error it measures.
+constexpr double kResolution = 0.1;
 
 // max-abs of a ω'-layout vector with translations divided by the characteristic length.
 double ScaledNorm(const Eigen::VectorXd& x, const Eigen::VectorXd& col_scales) {
@@ -36,6 +39,7 @@ RowErrorEstimator::RowErrorEstimator(const ConstraintSystem& sys, int order)
     : sys_(sys), order_(order), ext_poses_(sys.num_bodies()), ext_drivers_(sys.model().drivers.size()), col_scales_(DimensionlessColumnScales(sys)), seed_(order + 1), roundoff_(order + 1), delta_(order + 1),
       scale_(order + 1, 0.0), driver_scale_(order + 1, std::vector<double>(sys.model().drivers.size(), 0.0)),
       row_driver_(sys.num_rows(), -1), unit_excess_(sys.num_bodies(), 0.0) {
+  ext_phi_.resize(sys.num_rows());
   quad_poses_.resize(sys.num_bodies());
   quad_phi_.resize(sys.num_rows());
   const auto& entries = sys.entries();
@@ -100,7 +104,7 @@ bool RowErrorEstimator::PositionError(KinematicsWorkspace& ws, const SystemState
   inverse = std::max(inverse, probe_.cwiseQuotient(col_scales_).norm());
   *kappa = std::max(*kappa, norm * inverse);
   if (!ws.factorization().SolveLinearTranspose(probe_, &left_) || !left_.allFinite()) return false;
-  return PoseError(ws, s);
+  return PoseError(ws, s, *kappa);
 }
 
 // The stored pose with each p normalized, in long double (ext_poses_) and in quadruple
@@ -115,6 +119,12 @@ void RowErrorEstimator::NormalizedPoses(const SystemState& s) {
     unit_excess_[b] = static_cast<double>(norm - 1);
     ext_poses_[b].p /= norm;
     ext_poses_[b].A = RotationMatrix(ext_poses_[b].p);
+  }
+}
+
+// The same in quadruple precision (quad_poses_), for PoseError's finer residual.
+void RowErrorEstimator::QuadPoses(const SystemState& s) {
+  for (size_t b = 0; b < s.bodies.size(); ++b) {
     Eigen::Matrix<Quad, 4, 1> p = s.bodies[b].p.cast<Quad>();
     p /= QuadSqrt(p.squaredNorm());
     quad_poses_[b].r = s.bodies[b].r[0].cast<Quad>();
@@ -123,26 +133,34 @@ void RowErrorEstimator::NormalizedPoses(const SystemState& s) {
 }
 
 // The pose's actual error pose_error_ = Φ_q⁻¹Φ(q̂) at the normalized pose, the residual
-// Newton in double cannot see below its own round-off. Φ in quadruple precision (§8,
-// "Measured", step 1): near a singular position long double's round-off of Φ, solved
-// through Φ_q, is as large as the error itself (the N-four-bar's rockers turning
-// against the crank: 1.6e-17 to 5.9e-17 rad where it is exactly 0). And whether the
-// pose leaves a set-aside (redundant) equation unsatisfied beyond long double's
-// round-off: then the stored model does not move exactly — its redundancy holds only to
-// the rounding of its numbers (Bennett's condition in double; any redundant mechanism
-// outside the coordinate planes) — and the motion it stands for is known only to that
-// (aside_unsatisfied_, RoundOff).
-bool RowErrorEstimator::PoseError(KinematicsWorkspace& ws, const SystemState& s) {
+// Newton in double cannot see below its own round-off; Φ in long double (§9). Where
+// that round-off, solved through Φ_q — about κ_s·ε_ld — could reach a tenth of the
+// error it measures (near a singular position; the factor 2 on ε covers less, and
+// κ_s·ε_ld estimates the round-off to within an order of magnitude), Φ again in
+// quadruple precision (§8, "Measured", step 1). On the N-four-bar's rows nearest ±90° long double's
+// round-off gives 1.6e-17 to 5.9e-17 rad in the rockers' turn against the crank,
+// where the stored pose's error is exactly 0. First, whether the pose leaves a
+// set-aside (redundant) equation unsatisfied beyond long double's round-off: then the
+// stored model does not move exactly — its redundancy holds only to the rounding of
+// its numbers (Bennett's condition in double; any redundant mechanism outside the
+// coordinate planes) — the motion it stands for is known only to that
+// (aside_unsatisfied_, RoundOff), and the finer forms here and in SolveErrors would
+// resolve nothing.
+bool RowErrorEstimator::PoseError(KinematicsWorkspace& ws, const SystemState& s, double kappa) {
   NormalizedPoses(s);
   EvalDriverValuesExtended(sys_.model(), s.t, &ext_drivers_);
-  CalcPhiQuad(sys_, quad_poses_, ext_poses_, ext_drivers_, s.angle_ref, &quad_phi_);
-  for (size_t r = 0; r < rows_.size(); ++r) rhs_[r] = static_cast<double>(quad_phi_[rows_[r]]);
-  if (!ws.factorization().SolveLinear(rhs_, &pose_error_) || !pose_error_.allFinite()) return false;
+  CalcPhiExtended(sys_, ext_poses_, ext_drivers_, s.angle_ref, &ext_phi_);
   aside_unsatisfied_ = false;
   for (size_t a = 0; a < set_aside_.size(); ++a)
-    if (std::abs(static_cast<double>(quad_phi_[set_aside_[a]])) * set_aside_scales_[a] > kInconsistentUnits * kExtendedRoundoff)
+    if (std::abs(static_cast<double>(ext_phi_[set_aside_[a]])) * set_aside_scales_[a] > kInconsistentUnits * kExtendedRoundoff)
       aside_unsatisfied_ = true;
-  return true;
+  for (size_t r = 0; r < rows_.size(); ++r) rhs_[r] = static_cast<double>(ext_phi_[rows_[r]]);
+  if (!ws.factorization().SolveLinear(rhs_, &pose_error_) || !pose_error_.allFinite()) return false;
+  if (aside_unsatisfied_ || !(kappa * kExtendedRoundoff > kResolution * ScaledNorm(pose_error_, col_scales_))) return true;
+  QuadPoses(s);
+  CalcPhiQuad(sys_, quad_poses_, ext_poses_, ext_drivers_, s.angle_ref, &quad_phi_);
+  for (size_t r = 0; r < rows_.size(); ++r) rhs_[r] = static_cast<double>(quad_phi_[rows_[r]]);
+  return ws.factorization().SolveLinear(rhs_, &pose_error_) && pose_error_.allFinite();
 }
 
 // x_ = the order-k unknowns (r^(k), ω'^(k−1)) per body, ω' layout.
@@ -223,7 +241,7 @@ bool RowErrorEstimator::JetResiduals(const SystemState& s) {
 // And roundoff_[k] (RoundOff).
 bool RowErrorEstimator::SolveErrors(KinematicsWorkspace& ws, const SystemState& s) {
   static constexpr double kFactorial[] = {1, 1, 2, 6, 24};
-  const bool exact = JetResiduals(s);
+  const bool exact = !aside_unsatisfied_ && JetResiduals(s);
   for (int k = 1; k <= order_; ++k) {
     OrderUnknowns(s, k);
     CalcRhs(sys_, s, k, Formulation::Omega, &full_);

@@ -5,9 +5,10 @@
 // position misjudges the error by orders of magnitude either way, while the k-th
 // derivative's actual error there grows like k!/σ_min^k. This estimator measures
 // instead, at the solved, factorized row:
-//   1. the pose's error ε = Φ_q⁻¹Φ(q̂), Φ in quadruple precision (math/quad.hpp; long
-//      double for the families that read angles) at the pose with its Euler
-//      parameters normalized, and apart the stretch |p| − 1 of each stored p;
+//   1. the pose's error ε = Φ_q⁻¹Φ(q̂), Φ in long double at the pose with its Euler
+//      parameters normalized — again in quadruple precision (math/quad.hpp) where
+//      long double's round-off through Φ_q could reach ε/10 — and apart the stretch
+//      |p| − 1 of each stored p;
 //   2. their propagation into every derivative, q^(k) = F_k(q): δq^(k) = DF_k·(2ε) from
 //      the identities of the parameter sensitivities (sensitivity.hpp) with the pose
 //      moved instead of a parameter, central differences at ±h;
@@ -43,7 +44,8 @@ class RowErrorEstimator {
  private:
   bool PositionError(KinematicsWorkspace& ws, const SystemState& s, double* kappa);
   void NormalizedPoses(const SystemState& s);
-  bool PoseError(KinematicsWorkspace& ws, const SystemState& s);
+  void QuadPoses(const SystemState& s);
+  bool PoseError(KinematicsWorkspace& ws, const SystemState& s, double kappa);
   bool RoundOff(KinematicsWorkspace& ws, int k, bool residual_exact);
   bool JetResiduals(const SystemState& s);
   bool SolveErrors(KinematicsWorkspace& ws, const SystemState& s);
@@ -55,6 +57,7 @@ class RowErrorEstimator {
   int order_;
   std::vector<ExtendedPose> ext_poses_;
   std::vector<Real> ext_drivers_;
+  Eigen::Matrix<Real, Eigen::Dynamic, 1> ext_phi_;
   std::vector<QuadPose> quad_poses_;
   std::vector<Quad> quad_phi_;
   std::vector<int> rows_;

@@ -38,7 +38,7 @@ enum class ContactAction { Stop, Report };
 /// Which rows have their error bounds measured (`run --error-bounds`, Python's
 /// error_bounds): those near singular positions and a sample of the others (auto, the
 /// default, bound_sampling.hpp), or every row (measured, docs/constraints.md §8, at
-/// 1.4–2.4× the time).
+/// 1.1–3.7× the time).
 enum class ErrorBoundsChoice { Auto, Measured };
 
 struct RunRequest {

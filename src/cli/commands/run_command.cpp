@@ -49,7 +49,7 @@ void SetupRunCommand(CLI::App& app, RunOptions* o) {
   cmd->add_option("--error-bounds", o->error_bounds,
                   "Rows whose error_bound columns are measured: auto (default; near singular positions and a sample "
                   "of the others, which raises the condition estimate's bounds where they fall short) or measured "
-                  "(every row, 1.4-2.4x the time)")
+                  "(every row, 1.1-3.7x the time)")
       ->check(CLI::IsMember(NamesOf<ErrorBoundsChoice>()));
   cmd->add_flag("--stats", o->stats, "Print timing statistics on stderr");
   cmd->add_flag("--quiet", o->quiet,
