@@ -16,11 +16,11 @@
 
 #include "analysis/load.hpp"
 #include "analysis/reduction.hpp"
+#include "math/numbers.hpp"
 
 namespace mechkin {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kFirstPenalty = 1e4, kLastPenalty = 1e10, kFeasible = 1e-6;
 }  // namespace
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "math/numbers.hpp"
+
 namespace mechkin {
 
 const char* ReduceKindName(ReduceKind k) {
@@ -49,7 +51,6 @@ double HermiteEval(const std::vector<double>& c, double s, int k) {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kOrders = 4;  // value, velocity, acceleration, jerk: a Hermite of degree 7 at most
 
 // One row as a reduction reads it: t, and per block (0: the column; 1 + p: its

@@ -7,6 +7,7 @@
 
 #include "analysis/assembly.hpp"
 #include "analysis/quadratic_roots.hpp"
+#include "math/numbers.hpp"
 
 namespace mechkin {
 namespace {
@@ -14,7 +15,6 @@ namespace {
 constexpr int kDenseColumns = 1200;  // 200 bodies: the dense SVDs
 // The fit's sample spacing δ, as a fraction of the step (Locate, ClassifyAt).
 constexpr double kFitSpacing = 0.005;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 Eigen::MatrixXd ActiveScaledJacobian(const ConstraintSystem& sys, const SystemState& s, const std::vector<int>& rows) {
   const Eigen::MatrixXd J = ScaledJacobian(sys, s);

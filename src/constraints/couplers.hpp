@@ -24,6 +24,18 @@ struct CoordinateTerm {
   double coefficient = 1;         // c_k (SI: per rad or per m)
 };
 
+/// The coordinate t with coefficient c in a coupler's sum (each coupler's file says why
+/// c has its value); the second form also says whether the coordinate is a turn θ or a
+/// slide s (rack and pinion, screw coupling: one of each).
+inline CoordinateTerm ScaledTerm(CoordinateTerm t, double c) {
+  t.coefficient = c;
+  return t;
+}
+inline CoordinateTerm ScaledTerm(CoordinateTerm t, bool rotation, double c) {
+  t.rotation = rotation;
+  return ScaledTerm(t, c);
+}
+
 /// §3.11 the linear coupler Σ c_k q_k − c_0. Φ_q, RHS_k and κ are the sums of the
 /// coordinates' own (GRRD's with f = 0 on the joint manifold: RHS_k = 0, κ = 0;
 /// D2DD's with f = 0) scaled by c_k, each on its joint's two sides.

@@ -5,16 +5,7 @@
 
 namespace mechkin {
 
-namespace {
-
-CoordinateTerm Scaled(CoordinateTerm t, double c) {
-  t.coefficient = c;
-  return t;
-}
-
-}  // namespace
-
 GearConstraint::GearConstraint(const CoordinateTerm& joint1, const CoordinateTerm& joint2, double ratio)
-    : CouplerConstraint({Scaled(joint1, -ratio), Scaled(joint2, 1)}, 0) {}
+    : CouplerConstraint({ScaledTerm(joint1, -ratio), ScaledTerm(joint2, 1)}, 0) {}
 
 }  // namespace mechkin

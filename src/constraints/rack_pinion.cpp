@@ -4,17 +4,7 @@
 
 namespace mechkin {
 
-namespace {
-
-CoordinateTerm Scaled(CoordinateTerm t, bool rotation, double c) {
-  t.rotation = rotation;
-  t.coefficient = c;
-  return t;
-}
-
-}  // namespace
-
 RackPinionConstraint::RackPinionConstraint(const CoordinateTerm& pinion, const CoordinateTerm& rack, double pitch_radius)
-    : CouplerConstraint({Scaled(pinion, true, -pitch_radius), Scaled(rack, false, 1)}, 0) {}
+    : CouplerConstraint({ScaledTerm(pinion, true, -pitch_radius), ScaledTerm(rack, false, 1)}, 0) {}
 
 }  // namespace mechkin

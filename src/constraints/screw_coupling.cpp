@@ -7,17 +7,7 @@
 
 namespace mechkin {
 
-namespace {
-
-CoordinateTerm Scaled(CoordinateTerm t, bool rotation, double c) {
-  t.rotation = rotation;
-  t.coefficient = c;
-  return t;
-}
-
-}  // namespace
-
 ScrewCouplingConstraint::ScrewCouplingConstraint(const CoordinateTerm& screw, const CoordinateTerm& nut, double pitch)
-    : CouplerConstraint({Scaled(screw, true, -pitch / (2 * M_PI)), Scaled(nut, false, 1)}, 0) {}
+    : CouplerConstraint({ScaledTerm(screw, true, -pitch / (2 * M_PI)), ScaledTerm(nut, false, 1)}, 0) {}
 
 }  // namespace mechkin

@@ -13,12 +13,11 @@
 #include <limits>
 
 #include "io/interrupt.hpp"
+#include "math/numbers.hpp"
 
 namespace mechkin {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // An HDF5 identifier closed by its own close function when it goes out of scope.
 class Hid {

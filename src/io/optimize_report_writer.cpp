@@ -38,19 +38,19 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json Num(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+Json JsonNumber(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 Json Vector(const std::vector<double>& v) {
   Json a = Json::array();
-  for (double x : v) a.push_back(Num(x));
+  for (double x : v) a.push_back(JsonNumber(x));
   return a;
 }
 
 Json StartJson(const OptimizeStart& s) {
   return Json{{"initial", Vector(s.initial)},
               {"final", Vector(s.final)},
-              {"objective_initial", Num(s.objective_initial)},
-              {"objective_final", Num(s.objective_final)},
+              {"objective_initial", JsonNumber(s.objective_initial)},
+              {"objective_final", JsonNumber(s.objective_final)},
               {"iterations", s.iterations},
               {"ok", s.ok},
               {"feasible", s.feasible},
@@ -63,17 +63,17 @@ Json StartJson(const OptimizeStart& s) {
 
 std::string OptimizeReportJsonText(const OptimizeResult& r) {
   Json j{{"ok", r.ok}, {"converged", r.converged}, {"interrupted", r.interrupted}, {"message", r.message},
-         {"minimize", r.minimize}, {"objective_before", Num(r.objective_before)},
-         {"objective_after", Num(r.objective_after)}};
+         {"minimize", r.minimize}, {"objective_before", JsonNumber(r.objective_before)},
+         {"objective_after", JsonNumber(r.objective_after)}};
   Json params = Json::array();
   for (size_t k = 0; k < r.vary.size(); ++k)
     params.push_back({{"name", r.vary[k]},
-                      {"before", k < r.before.size() ? Num(r.before[k]) : Json(nullptr)},
-                      {"after", k < r.after.size() ? Num(r.after[k]) : Json(nullptr)},
-                      {"gradient", k < r.gradient.size() ? Num(r.gradient[k]) : Json(nullptr)}});
+                      {"before", k < r.before.size() ? JsonNumber(r.before[k]) : Json(nullptr)},
+                      {"after", k < r.after.size() ? JsonNumber(r.after[k]) : Json(nullptr)},
+                      {"gradient", k < r.gradient.size() ? JsonNumber(r.gradient[k]) : Json(nullptr)}});
   j["parameters"] = params;
   j["iterations"] = r.iterations;
-  j["gradient_norm"] = Num(r.gradient_norm);
+  j["gradient_norm"] = JsonNumber(r.gradient_norm);
   j["best_start"] = r.best_start;
   j["active_bounds"] = r.active_bounds;
   Json cons = Json::array();
@@ -81,7 +81,7 @@ std::string OptimizeReportJsonText(const OptimizeResult& r) {
     cons.push_back({{"reduction", r.constraints[c].reduction},
                     {"relation", r.constraints[c].at_least ? ">=" : "<="},
                     {"bound", r.constraints[c].bound},
-                    {"value", c < r.constraint_values.size() ? Num(r.constraint_values[c]) : Json(nullptr)},
+                    {"value", c < r.constraint_values.size() ? JsonNumber(r.constraint_values[c]) : Json(nullptr)},
                     {"active", c < r.constraint_active.size() && r.constraint_active[c]}});
   j["constraints"] = cons;
   Json starts = Json::array();

@@ -12,14 +12,14 @@ nlohmann::json EndJson(const RangeEnd& e) {
           {"message", e.message}};
 }
 
-std::string Num(double v) {
+std::string NumberText(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.12g", v);
   return buf;
 }
 
 std::string EndText(const RangeEnd& e, const std::string& unit) {
-  std::string s = Num(e.value) + " " + unit + " (" + e.kind + ")";
+  std::string s = NumberText(e.value) + " " + unit + " (" + e.kind + ")";
   if (e.kind == "failed") s += ": " + e.message;
   return s;
 }
@@ -45,10 +45,10 @@ void PrintRangeReport(const RangeReport& r, std::ostream& out) {
     return;
   }
   for (const auto& d : r.drivers) {
-    out << "driver `" << d.driver << "` (design value " << Num(d.design_value) << " " << d.unit << "): ";
+    out << "driver `" << d.driver << "` (design value " << NumberText(d.design_value) << " " << d.unit << "): ";
     if (d.upper.kind == "full turn") out << "full turn";
     else out << "from " << EndText(d.lower, d.unit) << " to " << EndText(d.upper, d.unit);
-    out << "; largest condition " << Num(d.max_condition) << " at " << Num(d.value_at_max_condition) << " " << d.unit
+    out << "; largest condition " << NumberText(d.max_condition) << " at " << NumberText(d.value_at_max_condition) << " " << d.unit
         << "\n";
   }
 }
