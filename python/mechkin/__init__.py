@@ -579,6 +579,59 @@ def _run_variant(model, values, order, tol):
     return model._core.run_variant({k: float(v) for k, v in values.items()}, int(order), float(tol))
 
 
+class _DeferredInterrupt:
+    """Ctrl-C noted instead of raised while the main thread feeds and watches a thread
+    pool. Raised anywhere, KeyboardInterrupt can land inside the pool's submit() while it
+    holds the pool's lock, and the pool's shutdown then waits on that lock for ever (seen
+    in CI with 20,000 variants on a loaded machine). The note also stops the running
+    variants at their next step (_mechkin.stop_all). Only the main thread receives
+    SIGINT: elsewhere nothing is installed."""
+
+    def __enter__(self):
+        import signal
+        import threading
+        self.pending = False
+        self.previous = None
+        if threading.current_thread() is threading.main_thread():
+            self.previous = signal.signal(signal.SIGINT, self._note)
+        return self
+
+    def _note(self, signum, frame):
+        self.pending = True
+        _mechkin.stop_all(True)
+
+    def __exit__(self, *exc):
+        import signal
+        if self.previous is not None:
+            signal.signal(signal.SIGINT, self.previous)
+        return False
+
+
+def _sweep_on_threads(model, variants, order, tol, threads):
+    """The variants' summaries from local threads; on Ctrl-C the queued variants are
+    dropped, the running ones stop at their next step, then KeyboardInterrupt is raised."""
+    import concurrent.futures
+    import os
+    with concurrent.futures.ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
+        with _DeferredInterrupt() as interrupt:
+            futures = []
+            for v in variants:
+                if interrupt.pending:
+                    break
+                futures.append(pool.submit(_run_variant, model, v, order, tol))
+            while not interrupt.pending and concurrent.futures.wait(futures, timeout=0.1).not_done:
+                pass
+            if interrupt.pending:
+                for f in futures:
+                    f.cancel()
+                try:
+                    concurrent.futures.wait(futures)
+                finally:
+                    _mechkin.stop_all(False)
+                raise KeyboardInterrupt
+            return [f.result() for f in futures]
+
+
 def _sweep_frame(model, variants, summaries, order):
     """One row per variant: its parameters, status, message, rows, t_stop, max_condition,
     t_max_condition, then "<column> min" and "<column> max" per summarised column."""
@@ -637,23 +690,7 @@ def sweep(model, variants, client=None, order=1, tol=1e-10, threads=None, out=No
         futures = client.map(_run_variant, [shared] * len(variants), variants, order=order, tol=tol, pure=False)
         summaries = client.gather(futures)
     else:
-        import concurrent.futures
-        import os
-        with concurrent.futures.ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
-            futures = [pool.submit(_run_variant, model, v, order, tol) for v in variants]
-            try:
-                summaries = [f.result() for f in futures]
-            except KeyboardInterrupt:
-                # Ctrl-C reaches this (main) thread: the queued variants are dropped and the
-                # running ones stop at their next step before the interrupt goes on.
-                for f in futures:
-                    f.cancel()
-                _mechkin.stop_all(True)
-                try:
-                    concurrent.futures.wait(futures)
-                finally:
-                    _mechkin.stop_all(False)
-                raise
+        summaries = _sweep_on_threads(model, variants, order, tol, threads)
     return _sweep_frame(model, variants, summaries, order)
 
 

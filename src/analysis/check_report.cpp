@@ -18,7 +18,7 @@ namespace {
 void AddExpectations(const Model& m, CheckReport* r) {
   const MobilityReport& mob = *r->mobility;
   auto expect = [&](const char* key, const ExpectValue& expected, const ExpectValue& actual) {
-    r->expectations.push_back({key, expected, actual, expected == actual});
+    r->expectations.push_back({key, expected, actual, expected == actual, ""});
   };
   auto when_assembled = [&](const ExpectValue& v) { return mob.assembled ? v : ExpectValue{}; };
   if (m.expect.grubler) expect("grubler", ExpectValue::Of(*m.expect.grubler), ExpectValue::Of(r->grubler));

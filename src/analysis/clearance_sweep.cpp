@@ -103,7 +103,9 @@ void AddClearanceCheck(const Model& m, CheckReport* r, const InterruptPoll& stop
                        ClearanceWhere(m, p)});
   c.tightest = sweep.tightest;
   if (!m.expect.min_clearance) return;
-  ExpectationResult e{"min_clearance", ExpectValue::Of(*m.expect.min_clearance * L), {}, false, ""};
+  ExpectationResult e;
+  e.key = "min_clearance";
+  e.expected = ExpectValue::Of(*m.expect.min_clearance * L);
   if (sweep.tightest >= 0) {
     const ClearanceMinimum& t = sweep.pairs[sweep.tightest];
     e.actual = ExpectValue::Of(t.clearance * L);

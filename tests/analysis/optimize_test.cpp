@@ -85,8 +85,12 @@ TEST(Optimize, ObjectiveGradientEqualsCentralDifferences) {
     // sse and rms hand Ceres residuals whose squares sum to the objective (rms: its square)
     double squares = 0;
     for (double r : v.residuals) squares += r * r;
-    if (std::string(objective) == "fit") EXPECT_NEAR(squares, v.value, 1e-12 * v.value);
-    if (std::string(objective) == "mu_rms") EXPECT_NEAR(squares, v.value * v.value, 1e-12 * v.value * v.value);
+    if (std::string(objective) == "fit") {
+      EXPECT_NEAR(squares, v.value, 1e-12 * v.value);
+    }
+    if (std::string(objective) == "mu_rms") {
+      EXPECT_NEAR(squares, v.value * v.value, 1e-12 * v.value * v.value);
+    }
     for (int k = 0; k < 3; ++k) {
       const double h = 1e-5 * x[k];
       std::vector<double> xp = x, xm = x;

@@ -28,8 +28,8 @@ struct Solved {
   RowSelection rows;
 };
 
-// The mechanism assembled at t with the drivers' values there.
-void Assemble(const std::string& file, double t, Solved* out) {
+// The mechanism assembled at its design pose (t = 0) with the drivers' values there.
+void Assemble(const std::string& file, Solved* out) {
   out->model = testing_files::FromJson(testing_files::ReadJson(file));
   out->sys = std::make_unique<ConstraintSystem>(out->model, true);
   out->s = std::make_unique<SystemState>(*out->sys);
@@ -43,7 +43,7 @@ class WorkspaceTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(WorkspaceTest, TransposeSolveMatchesDenseTranspose) {
   Solved m;
-  Assemble(GetParam(), 0, &m);
+  Assemble(GetParam(), &m);
   KinematicsWorkspace ws(*m.sys, m.rows.active, WorkspaceOptions{});
   ASSERT_TRUE(SolvePosition(ws, Tight(1e-13), m.s.get(), false).success);
   Eigen::MatrixXd J;
@@ -60,7 +60,7 @@ TEST_P(WorkspaceTest, TransposeSolveMatchesDenseTranspose) {
 
 TEST_P(WorkspaceTest, VelocityMatchesCentralDifferenceOfPositions) {
   Solved m;
-  Assemble(GetParam(), 0, &m);
+  Assemble(GetParam(), &m);
   KinematicsWorkspace ws(*m.sys, m.rows.active, WorkspaceOptions{});
   const double t = 0.3 * m.model.analysis->end, h = 1e-5 * m.model.analysis->end;
   std::string why;

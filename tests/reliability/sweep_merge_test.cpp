@@ -115,8 +115,8 @@ namespace sweep_merge_test {
 // Issue 24, limits up front: a count beyond a stated limit is an argument error
 // (exit 2) naming the limit, before any variant, sample or step is made.
 TEST(SweepLimits, AGridBeyondTheVariantLimitIsAnArgumentError) {
-  for (const std::string& grid : {" --grid crank=30:50:1000000 --grid rod=100:140:1000000",  // 1e12
-                                   " --grid crank=30:50:10001 --grid rod=100:140:10000"}) {  // 1e8 + 1e4
+  for (const char* grid : {" --grid crank=30:50:1000000 --grid rod=100:140:1000000",  // 1e12
+                           " --grid crank=30:50:10001 --grid rod=100:140:10000"}) {  // 1e8 + 1e4
     const Result r = Mechkin("sweep " + kSlider + grid + " --shard 1/10000");
     EXPECT_EQ(r.code, 2) << grid << "\n" << r.out;
     EXPECT_NE(r.out.find("limit of 100000000 variants"), std::string::npos) << r.out;
