@@ -169,7 +169,9 @@ bool SdfReader::ReadAxis(const XMLElement* e, const char* tag, const Pose& joint
   *axis = expressed && *expressed ? Vec3(joint_world.R.transpose() * in.R * *unit) : *unit;
   double lo = -1e16, hi = 1e16;
   const XMLElement* lim = ax->FirstChildElement("limit");
-  const bool both = ChildNumber(lim, "lower", &lo, g_) & ChildNumber(lim, "upper", &hi, g_);
+  const bool has_lower = ChildNumber(lim, "lower", &lo, g_);  // both read: each reports its own error
+  const bool has_upper = ChildNumber(lim, "upper", &hi, g_);
+  const bool both = has_lower && has_upper;
   if (both && std::abs(lo) < 1e15 && std::abs(hi) < 1e15 && j->kind != Kind::Universal && !std::strcmp(tag, "axis")) {
     if (lo < hi) j->limits = std::array<double, 2>{lo, hi};
     else if (lo > hi) return g_->Error(lim, "lower limit above upper limit", "swap them"), false;
