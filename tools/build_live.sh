@@ -36,7 +36,7 @@ io/live/live_api.cpp io/live/live_stubs.cpp io/plot_marks.cpp
 # Unity batches as in the native build (CMakeLists.txt, MECHKIN_UNITY_BUILD): up to 8
 # sources of one folder compiled as one translation unit, which parses the headers
 # (Eigen, nlohmann_json, the layers below) once for the batch; the step's own layers
-# (math, constraints, kinematics) one source per unit, as natively. 39 units instead of
+# (math, constraints, kinematics) one source per unit, as natively. 38 units instead of
 # 99: the module took 6.6 min of CI's Release build beside the native compiles
 # (2026-12-06). A batch file is rewritten only when its list changes.
 mkdir -p "$out/unity"
@@ -68,14 +68,17 @@ done
 for s in $sources; do
   case "$s" in math/*|constraints/*|kinematics/*) singles="$singles $root/src/$s";; esac
 done
-units="$batches $singles"
 objects=""
-for u in $units; do objects="$objects $out/obj/$(basename "$(dirname "$u")")_$(basename "$u" .cpp).o"; done
+pairs=""  # unit and its object, one pair a line
+for u in $batches $singles; do
+  o="$out/obj/$(basename "$(dirname "$u")")_$(basename "$u" .cpp).o"
+  objects="$objects $o"
+  pairs="$pairs$u $o
+"
+done
 # Two compiles at a time (the machines have two cores); make-like: a unit is compiled
-# again when it, a source it includes or any header is newer than its object.
-for u in $units; do
-  printf '%s %s\n' "$u" "$out/obj/$(basename "$(dirname "$u")")_$(basename "$u" .cpp).o"
-done | xargs -P 2 -n 2 sh -c 'stale=0; [ -f "$2" ] && [ ! "$1" -nt "$2" ] || stale=1
+# again when it, a source a batch includes or any header is newer than its object.
+printf '%s' "$pairs" | xargs -P 2 -n 2 sh -c 'stale=0; [ -f "$2" ] && [ ! "$1" -nt "$2" ] || stale=1
   for s in $(sed -n "s/^#include \"\(.*\)\"$/\1/p" "$1"); do [ "$s" -nt "$2" ] && stale=1; done
   [ -n "$(find '"$root"'/src -name "*.hpp" -newer "$2" 2>/dev/null | head -1)" ] && stale=1
   if [ "$stale" -eq 1 ]; then '"$cxx $flags"' -c "$1" -o "$2" || exit 255; fi' sh
