@@ -65,6 +65,33 @@ void Factorization(benchmark::State& st, const std::string& which) {
   for (auto _ : st) benchmark::DoNotOptimize(newton.Factorize(s));
 }
 
+// The dense solves of one step on the slider-crank's Jacobian at t = 0.3 s (mid-motion,
+// a dense right-hand side): back-solve, transposed solve, the two condition estimates.
+void DenseSolves(benchmark::State& st, int which) {
+  Model m = LoadOrDie(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/spatial-slider-crank.json");
+  m.analysis->end = 0.3;
+  m.analysis->steps = 108;
+  const ConstraintSystem sys(m, true);
+  SystemState pose(sys);
+  RunKinematicAnalysis(m, AnalysisOptions{}, [&](const SystemState& s, const StepDiagnostics&) { pose = s; return true; });
+  NewtonSolver newton(sys, AllRows(sys));
+  newton.Factorize(pose);
+  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(6 * sys.num_bodies(), 1, 2), x(b.size());
+  for (auto _ : st) {
+    if (which == 0) newton.BackSolve(b, &x);
+    if (which == 1) newton.SolveLinearTranspose(b, &x);
+    if (which == 2) benchmark::DoNotOptimize(newton.ConditionEstimate());
+    if (which == 3) benchmark::DoNotOptimize(newton.SharperConditionEstimate(2));
+    if (which == 4) newton.Factorize(pose);
+    benchmark::DoNotOptimize(x.data());
+  }
+}
+BENCHMARK_CAPTURE(DenseSolves, back_solve, 0);
+BENCHMARK_CAPTURE(DenseSolves, transposed_solve, 1);
+BENCHMARK_CAPTURE(DenseSolves, condition_estimate, 2);
+BENCHMARK_CAPTURE(DenseSolves, sharper_estimate_2, 3);
+BENCHMARK_CAPTURE(DenseSolves, factorize, 4);
+
 // The whole `check` report (load + rank mobility, redundancy, idle freedoms, driving
 // status, suggestions) of every bundled mechanism: no time analysis needed.
 void CheckReport(benchmark::State& st, const std::string& file) {

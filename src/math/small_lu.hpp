@@ -2,10 +2,17 @@
 // Eigen's PartialPivLU is tuned for large matrices (blocking, BLAS-like kernels);
 // for the 18×18 Jacobian of a slider-crank its overhead is several times the
 // arithmetic, so the per-step solve uses this plain Doolittle elimination.
+//
+// The factors of a mechanism's Jacobian are mostly exact zeros (the slider-crank's
+// L and U hold about a third of their places), so after each factorization the
+// nonzeros of each column are listed once and the solves visit only those. Skipping
+// a term a − 0·y changes nothing but, at most, the sign of a zero: the listed solves
+// give the dense ones' bits wherever their result has no zero or non-finite entry,
+// and fall back to the dense solves where it has (constraints.md §1.6).
 #pragma once
 
 #include <Eigen/Core>
-#include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace mechkin {
@@ -14,76 +21,35 @@ class SmallLU {
  public:
   /// Factorizes `a` (square) in place: afterwards it holds L (unit, below the
   /// diagonal) and U. Returns false on an exactly zero or non-finite pivot.
-  bool Compute(Eigen::MatrixXd* a) {
-    lu_ = a;
-    const int n = static_cast<int>(a->rows());
-    perm_.resize(n);
-    sign_ = 1;
-    Eigen::MatrixXd& A = *a;
-    for (int k = 0; k < n; ++k) {
-      int p = k;
-      double best = std::abs(A(k, k));
-      for (int i = k + 1; i < n; ++i)
-        if (std::abs(A(i, k)) > best) { best = std::abs(A(i, k)); p = i; }
-      perm_[k] = p;
-      if (!(best > 0) || !std::isfinite(best)) return false;
-      if (p != k) { A.row(k).swap(A.row(p)); sign_ = -sign_; }
-      const double inv = 1.0 / A(k, k);
-      for (int i = k + 1; i < n; ++i) A(i, k) *= inv;
-      for (int j = k + 1; j < n; ++j) {
-        const double akj = A(k, j);
-        if (akj == 0) continue;
-        double* col = &A(0, j);
-        const double* lk = &A(0, k);
-        for (int i = k + 1; i < n; ++i) col[i] -= lk[i] * akj;
-      }
-    }
-    return true;
-  }
-  /// x = A⁻¹ b with the factors (x may alias b).
-  void Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
-    const Eigen::MatrixXd& A = *lu_;
-    const int n = static_cast<int>(A.rows());
-    if (x != &b) *x = b;
-    Eigen::VectorXd& y = *x;
-    for (int k = 0; k < n; ++k) std::swap(y[k], y[perm_[k]]);
-    for (int j = 0; j < n; ++j) {  // L y = P b, column by column
-      const double yj = y[j];
-      if (yj != 0) for (int i = j + 1; i < n; ++i) y[i] -= A(i, j) * yj;
-    }
-    for (int j = n - 1; j >= 0; --j) {  // U x = y
-      y[j] /= A(j, j);
-      const double yj = y[j];
-      if (yj != 0) for (int i = 0; i < j; ++i) y[i] -= A(i, j) * yj;
-    }
-  }
-  /// x = A⁻ᵀ b with the same factors: PA = LU gives Aᵀ = Uᵀ Lᵀ P, so solve
-  /// Uᵀ z = b (forward), Lᵀ w = z (backward), then undo the row swaps in reverse.
-  void SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
-    const Eigen::MatrixXd& A = *lu_;
-    const int n = static_cast<int>(A.rows());
-    if (x != &b) *x = b;
-    Eigen::VectorXd& y = *x;
-    for (int j = 0; j < n; ++j) {  // Uᵀ z = b: row j of Uᵀ is column j of U
-      double v = y[j];
-      const double* uj = &A(0, j);
-      for (int i = 0; i < j; ++i) v -= uj[i] * y[i];
-      y[j] = v / A(j, j);
-    }
-    for (int j = n - 1; j >= 0; --j) {  // Lᵀ w = z, unit diagonal
-      double v = y[j];
-      const double* lj = &A(0, j);
-      for (int i = j + 1; i < n; ++i) v -= lj[i] * y[i];
-      y[j] = v;
-    }
-    for (int k = n - 1; k >= 0; --k) std::swap(y[k], y[perm_[k]]);
-  }
+  bool Compute(Eigen::MatrixXd* a);
+  /// x = A⁻¹ b with the factors (x may alias b). Bit for bit DenseSolve's result.
+  void Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const;
+  /// x = A⁻ᵀ b with the same factors. Bit for bit DenseSolveTranspose's result.
+  void SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const;
+  /// The same solves over every place of the factors (the reference the listed
+  /// solves reproduce, and their fallback).
+  void DenseSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const;
+  void DenseSolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const;
   double sign() const { return sign_; }
 
  private:
+  void ListNonzeros();
+  void SolveListed(double* y) const;
+  void SolveTransposeListed(double* y) const;
+  void Permute(double* y) const;
+  void Unpermute(double* y) const;
+  static std::uint64_t NonzeroBits(const double* col, int n);
+  static bool HasZeroOrNonFinite(const double* y, int n);
+
   const Eigen::MatrixXd* lu_ = nullptr;
+  int n_ = 0;
   std::vector<int> perm_;
   double sign_ = 1;
+  bool listed_ = false;  // the last Compute succeeded and listed its nonzeros (n ≤ 64)
+  // Column j's nonzero rows of L (below the diagonal) as the bits of lower_[j], of U
+  // (above it) as those of upper_[j]; listed for up to 64 unknowns.
+  std::vector<std::uint64_t> lower_, upper_;
+  mutable Eigen::VectorXd saved_b_;  // the right-hand side, kept for the fallback
 };
 
 }  // namespace mechkin

@@ -1,0 +1,194 @@
+#include "math/small_lu.hpp"
+
+#include <cmath>
+#include <utility>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace mechkin {
+
+bool SmallLU::Compute(Eigen::MatrixXd* a) {
+  lu_ = a;
+  listed_ = false;
+  const int n = static_cast<int>(a->rows());
+  n_ = n;
+  perm_.resize(n);
+  sign_ = 1;
+  Eigen::MatrixXd& A = *a;
+  for (int k = 0; k < n; ++k) {
+    int p = k;
+    double best = std::abs(A(k, k));
+    for (int i = k + 1; i < n; ++i)
+      if (std::abs(A(i, k)) > best) { best = std::abs(A(i, k)); p = i; }
+    perm_[k] = p;
+    if (!(best > 0) || !std::isfinite(best)) return false;
+    if (p != k) { A.row(k).swap(A.row(p)); sign_ = -sign_; }
+    const double inv = 1.0 / A(k, k);
+    for (int i = k + 1; i < n; ++i) A(i, k) *= inv;
+    for (int j = k + 1; j < n; ++j) {
+      const double akj = A(k, j);
+      if (akj == 0) continue;
+      double* col = &A(0, j);
+      const double* lk = &A(0, k);
+      for (int i = k + 1; i < n; ++i) col[i] -= lk[i] * akj;
+    }
+  }
+  listed_ = n <= 64;
+  if (listed_) ListNonzeros();
+  return true;
+}
+
+// One bit per row of each column: nonzero (NaN included) or not. n ≤ 64.
+void SmallLU::ListNonzeros() {
+  const int n = n_;
+  lower_.resize(n);
+  upper_.resize(n);
+  const double* a = lu_->data();
+  for (int j = 0; j < n; ++j) {
+    const std::uint64_t m = NonzeroBits(a + static_cast<size_t>(j) * n, n);
+    upper_[j] = m & ((std::uint64_t{1} << j) - 1);
+    lower_[j] = j + 1 < 64 ? m & ~((std::uint64_t{2} << j) - 1) : 0;
+  }
+}
+
+std::uint64_t SmallLU::NonzeroBits(const double* col, int n) {
+  std::uint64_t m = 0;
+  int i = 0;
+#if defined(__SSE2__)
+  const __m128d zero = _mm_setzero_pd();
+  for (; i + 1 < n; i += 2)
+    m |= static_cast<std::uint64_t>(_mm_movemask_pd(_mm_cmpneq_pd(_mm_loadu_pd(col + i), zero))) << i;
+#endif
+  for (; i < n; ++i) m |= static_cast<std::uint64_t>(col[i] != 0) << i;
+  return m;
+}
+
+void SmallLU::Permute(double* y) const {
+  for (int k = 0; k < n_; ++k) std::swap(y[k], y[perm_[k]]);
+}
+
+void SmallLU::Unpermute(double* y) const {
+  for (int k = n_ - 1; k >= 0; --k) std::swap(y[k], y[perm_[k]]);
+}
+
+bool SmallLU::HasZeroOrNonFinite(const double* y, int n) {
+  bool bad = false;
+  for (int i = 0; i < n; ++i) bad |= !(std::abs(y[i]) > 0) || !std::isfinite(y[i]);
+  return bad;
+}
+
+// Column-oriented substitution as DenseSolve, over the listed nonzeros only. Every
+// element receives its updates in the same order (columns ascending for L,
+// descending for U); the skipped ones are a − (±0).
+void SmallLU::SolveListed(double* y) const {
+  const double* a = lu_->data();
+  const int n = n_;
+  for (int j = 0; j < n; ++j) {
+    const double yj = y[j];
+    if (yj == 0) continue;
+    const double* col = a + static_cast<size_t>(j) * n;
+    for (std::uint64_t m = lower_[j]; m; m &= m - 1) {
+      const int i = __builtin_ctzll(m);
+      y[i] -= col[i] * yj;
+    }
+  }
+  for (int j = n - 1; j >= 0; --j) {
+    const double* col = a + static_cast<size_t>(j) * n;
+    y[j] /= col[j];
+    const double yj = y[j];
+    if (yj == 0) continue;
+    for (std::uint64_t m = upper_[j]; m; m &= m - 1) {
+      const int i = __builtin_ctzll(m);
+      y[i] -= col[i] * yj;
+    }
+  }
+}
+
+// Row-oriented substitution as DenseSolveTranspose (each sum over ascending rows),
+// over the listed nonzeros only.
+void SmallLU::SolveTransposeListed(double* y) const {
+  const double* a = lu_->data();
+  const int n = n_;
+  for (int j = 0; j < n; ++j) {  // Uᵀ z = b
+    const double* col = a + static_cast<size_t>(j) * n;
+    double v = y[j];
+    for (std::uint64_t m = upper_[j]; m; m &= m - 1) {
+      const int i = __builtin_ctzll(m);
+      v -= col[i] * y[i];
+    }
+    y[j] = v / col[j];
+  }
+  for (int j = n - 1; j >= 0; --j) {  // Lᵀ w = z
+    const double* col = a + static_cast<size_t>(j) * n;
+    double v = y[j];
+    for (std::uint64_t m = lower_[j]; m; m &= m - 1) {
+      const int i = __builtin_ctzll(m);
+      v -= col[i] * y[i];
+    }
+    y[j] = v;
+  }
+}
+
+// Where a listed solve's result holds a zero (whose sign a skipped a − (±0) may have
+// turned) or a non-finite entry, the dense solve gives the reference bits.
+void SmallLU::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
+  if (!listed_) return DenseSolve(b, x);
+  saved_b_ = b;
+  if (x != &b) *x = b;
+  double* y = x->data();
+  Permute(y);
+  SolveListed(y);
+  if (HasZeroOrNonFinite(y, n_)) DenseSolve(saved_b_, x);
+}
+
+void SmallLU::SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
+  if (!listed_) return DenseSolveTranspose(b, x);
+  saved_b_ = b;
+  if (x != &b) *x = b;
+  double* y = x->data();
+  SolveTransposeListed(y);
+  Unpermute(y);
+  if (HasZeroOrNonFinite(y, n_)) DenseSolveTranspose(saved_b_, x);
+}
+
+void SmallLU::DenseSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
+  const Eigen::MatrixXd& A = *lu_;
+  const int n = n_;
+  if (x != &b) *x = b;
+  Eigen::VectorXd& y = *x;
+  Permute(y.data());
+  for (int j = 0; j < n; ++j) {  // L y = P b, column by column
+    const double yj = y[j];
+    if (yj != 0) for (int i = j + 1; i < n; ++i) y[i] -= A(i, j) * yj;
+  }
+  for (int j = n - 1; j >= 0; --j) {  // U x = y
+    y[j] /= A(j, j);
+    const double yj = y[j];
+    if (yj != 0) for (int i = 0; i < j; ++i) y[i] -= A(i, j) * yj;
+  }
+}
+
+// PA = LU gives Aᵀ = Uᵀ Lᵀ P, so solve Uᵀ z = b (forward), Lᵀ w = z (backward),
+// then undo the row swaps in reverse.
+void SmallLU::DenseSolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
+  const Eigen::MatrixXd& A = *lu_;
+  const int n = n_;
+  if (x != &b) *x = b;
+  Eigen::VectorXd& y = *x;
+  for (int j = 0; j < n; ++j) {  // Uᵀ z = b: row j of Uᵀ is column j of U
+    double v = y[j];
+    const double* uj = &A(0, j);
+    for (int i = 0; i < j; ++i) v -= uj[i] * y[i];
+    y[j] = v / A(j, j);
+  }
+  for (int j = n - 1; j >= 0; --j) {  // Lᵀ w = z, unit diagonal
+    double v = y[j];
+    const double* lj = &A(0, j);
+    for (int i = j + 1; i < n; ++i) v -= lj[i] * y[i];
+    y[j] = v;
+  }
+  Unpermute(y.data());
+}
+
+}  // namespace mechkin
