@@ -72,66 +72,98 @@ void SmallLU::Unpermute(double* y) const {
   for (int k = n_ - 1; k >= 0; --k) std::swap(y[k], y[perm_[k]]);
 }
 
-bool SmallLU::HasZeroOrNonFinite(const double* y, int n) {
+bool SmallLU::HasNonFinite(const double* y, int n) {
   bool bad = false;
-  for (int i = 0; i < n; ++i) bad |= !(std::abs(y[i]) > 0) || !std::isfinite(y[i]);
+  for (int i = 0; i < n; ++i) bad |= !std::isfinite(y[i]);
   return bad;
 }
 
-// Column-oriented substitution as DenseSolve, over the listed nonzeros only. Every
-// element receives its updates in the same order (columns ascending for L,
-// descending for U); the skipped ones are a − (±0).
+namespace {
+
+bool IsNegativeZero(double v) { return v == 0 && std::signbit(v); }
+
+// The rows among `rows` (bits) where y holds −0.
+std::uint64_t NegativeZeros(const double* y, std::uint64_t rows) {
+  std::uint64_t kept = 0;
+  for (std::uint64_t m = rows; m; m &= m - 1) {
+    const int i = __builtin_ctzll(m);
+    kept |= static_cast<std::uint64_t>(IsNegativeZero(y[i])) << i;
+  }
+  return kept;
+}
+
+std::uint64_t RowsBelow(int j) { return ~((std::uint64_t{2} << j) - 1); }  // rows > j (j < 64)
+std::uint64_t RowsAbove(int j) { return (std::uint64_t{1} << j) - 1; }     // rows < j
+std::uint64_t AllRows(int n) { return n == 64 ? ~std::uint64_t{0} : RowsAbove(n); }
+
+// y_i −= col_i · yj for the rows `rows` (bits).
+void SubtractColumn(double* y, const double* col, double yj, std::uint64_t rows) {
+  for (std::uint64_t m = rows; m; m &= m - 1) {
+    const int i = __builtin_ctzll(m);
+    y[i] -= col[i] * yj;
+  }
+}
+
+// v − Σ col_i · y_i over the rows `rows` (bits), ascending.
+double SubtractDot(double v, const double* col, const double* y, std::uint64_t rows) {
+  for (std::uint64_t m = rows; m; m &= m - 1) {
+    const int i = __builtin_ctzll(m);
+    v -= col[i] * y[i];
+  }
+  return v;
+}
+
+}  // namespace
+
+// Column-oriented substitution as DenseSolve, each element's updates in the same
+// order (columns ascending for L, descending for U), the zero terms a − (±0)
+// skipped. That is exact except for an element holding −0, which −(−0) turns to +0;
+// and only such an element can be −0 (x − p is −0 only for x = −0, p = +0; a
+// division may make one, the divided element). So the elements holding −0 take
+// every term of the column, as in the dense substitution.
 void SmallLU::SolveListed(double* y) const {
   const double* a = lu_->data();
   const int n = n_;
+  std::uint64_t negative_zero = NegativeZeros(y, AllRows(n));
   for (int j = 0; j < n; ++j) {
     const double yj = y[j];
     if (yj == 0) continue;
-    const double* col = a + static_cast<size_t>(j) * n;
-    for (std::uint64_t m = lower_[j]; m; m &= m - 1) {
-      const int i = __builtin_ctzll(m);
-      y[i] -= col[i] * yj;
-    }
+    const std::uint64_t below = negative_zero & RowsBelow(j);
+    SubtractColumn(y, a + static_cast<size_t>(j) * n, yj, lower_[j] | below);
+    negative_zero = (negative_zero & ~below) | NegativeZeros(y, below);
   }
   for (int j = n - 1; j >= 0; --j) {
     const double* col = a + static_cast<size_t>(j) * n;
     y[j] /= col[j];
+    const std::uint64_t bit = std::uint64_t{1} << j;
+    negative_zero = (negative_zero & ~bit) | NegativeZeros(y, bit);
     const double yj = y[j];
     if (yj == 0) continue;
-    for (std::uint64_t m = upper_[j]; m; m &= m - 1) {
-      const int i = __builtin_ctzll(m);
-      y[i] -= col[i] * yj;
-    }
+    const std::uint64_t above = negative_zero & RowsAbove(j);
+    SubtractColumn(y, col, yj, upper_[j] | above);
+    negative_zero = (negative_zero & ~above) | NegativeZeros(y, above);
   }
 }
 
 // Row-oriented substitution as DenseSolveTranspose (each sum over ascending rows),
-// over the listed nonzeros only.
+// the zero terms skipped: exact unless the sum starts at −0 (only then can it be −0
+// when a term comes), and such a sum takes every term.
 void SmallLU::SolveTransposeListed(double* y) const {
   const double* a = lu_->data();
   const int n = n_;
   for (int j = 0; j < n; ++j) {  // Uᵀ z = b
     const double* col = a + static_cast<size_t>(j) * n;
-    double v = y[j];
-    for (std::uint64_t m = upper_[j]; m; m &= m - 1) {
-      const int i = __builtin_ctzll(m);
-      v -= col[i] * y[i];
-    }
-    y[j] = v / col[j];
+    const double v = y[j];
+    y[j] = SubtractDot(v, col, y, IsNegativeZero(v) ? RowsAbove(j) : upper_[j]) / col[j];
   }
   for (int j = n - 1; j >= 0; --j) {  // Lᵀ w = z
-    const double* col = a + static_cast<size_t>(j) * n;
-    double v = y[j];
-    for (std::uint64_t m = lower_[j]; m; m &= m - 1) {
-      const int i = __builtin_ctzll(m);
-      v -= col[i] * y[i];
-    }
-    y[j] = v;
+    const double v = y[j];
+    y[j] = SubtractDot(v, a + static_cast<size_t>(j) * n, y, IsNegativeZero(v) ? RowsBelow(j) & AllRows(n) : lower_[j]);
   }
 }
 
-// Where a listed solve's result holds a zero (whose sign a skipped a − (±0) may have
-// turned) or a non-finite entry, the dense solve gives the reference bits.
+// Non-finite entries (a skipped 0 · ∞ is NaN in the dense solve) are rare: there
+// the dense solve gives the reference bits.
 void SmallLU::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
   if (!listed_) return DenseSolve(b, x);
   saved_b_ = b;
@@ -139,7 +171,7 @@ void SmallLU::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
   double* y = x->data();
   Permute(y);
   SolveListed(y);
-  if (HasZeroOrNonFinite(y, n_)) DenseSolve(saved_b_, x);
+  if (HasNonFinite(y, n_)) DenseSolve(saved_b_, x);
 }
 
 void SmallLU::SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
@@ -149,7 +181,7 @@ void SmallLU::SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const
   double* y = x->data();
   SolveTransposeListed(y);
   Unpermute(y);
-  if (HasZeroOrNonFinite(y, n_)) DenseSolveTranspose(saved_b_, x);
+  if (HasNonFinite(y, n_)) DenseSolveTranspose(saved_b_, x);
 }
 
 void SmallLU::DenseSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {

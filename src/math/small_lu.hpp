@@ -5,10 +5,11 @@
 //
 // The factors of a mechanism's Jacobian are mostly exact zeros (the slider-crank's
 // L and U hold about a third of their places), so after each factorization the
-// nonzeros of each column are listed once and the solves visit only those. Skipping
-// a term a − 0·y changes nothing but, at most, the sign of a zero: the listed solves
-// give the dense ones' bits wherever their result has no zero or non-finite entry,
-// and fall back to the dense solves where it has (constraints.md §1.6).
+// nonzeros of each column are marked once and the solves visit only those. Skipping
+// a term a − 0·y changes nothing but the sign of a zero a, and only an element
+// holding −0 can be turned, so those take every term: the solves give the dense
+// ones' bits, and where the result has a non-finite entry (a skipped 0·∞ is NaN)
+// the dense solve is run instead (constraints.md §1.6).
 #pragma once
 
 #include <Eigen/Core>
@@ -39,7 +40,7 @@ class SmallLU {
   void Permute(double* y) const;
   void Unpermute(double* y) const;
   static std::uint64_t NonzeroBits(const double* col, int n);
-  static bool HasZeroOrNonFinite(const double* y, int n);
+  static bool HasNonFinite(const double* y, int n);
 
   const Eigen::MatrixXd* lu_ = nullptr;
   int n_ = 0;
