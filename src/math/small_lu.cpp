@@ -130,18 +130,17 @@ void SmallLU::SolveListed(double* y) const {
     if (yj == 0) continue;
     const std::uint64_t below = negative_zero & RowsBelow(j);
     SubtractColumn(y, a + static_cast<size_t>(j) * n, yj, lower_[j] | below);
-    negative_zero = (negative_zero & ~below) | NegativeZeros(y, below);
+    if (below) negative_zero = (negative_zero & ~below) | NegativeZeros(y, below);
   }
+  // Here y_j is final once divided: only the rows above it are tracked on.
   for (int j = n - 1; j >= 0; --j) {
     const double* col = a + static_cast<size_t>(j) * n;
     y[j] /= col[j];
-    const std::uint64_t bit = std::uint64_t{1} << j;
-    negative_zero = (negative_zero & ~bit) | NegativeZeros(y, bit);
     const double yj = y[j];
     if (yj == 0) continue;
     const std::uint64_t above = negative_zero & RowsAbove(j);
     SubtractColumn(y, col, yj, upper_[j] | above);
-    negative_zero = (negative_zero & ~above) | NegativeZeros(y, above);
+    if (above) negative_zero = (negative_zero & ~above) | NegativeZeros(y, above);
   }
 }
 
