@@ -23,7 +23,11 @@ bool SmallLU::Compute(Eigen::MatrixXd* a) {
       if (std::abs(A(i, k)) > best) { best = std::abs(A(i, k)); p = i; }
     perm_[k] = p;
     if (!(best > 0) || !std::isfinite(best)) return false;
-    if (p != k) { A.row(k).swap(A.row(p)); sign_ = -sign_; }
+    if (p != k) {
+      double* data = A.data();
+      for (int c = 0; c < n; ++c) std::swap(data[k + c * n], data[p + c * n]);
+      sign_ = -sign_;
+    }
     const double inv = 1.0 / A(k, k);
     for (int i = k + 1; i < n; ++i) A(i, k) *= inv;
     for (int j = k + 1; j < n; ++j) {
