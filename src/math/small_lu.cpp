@@ -48,6 +48,10 @@ void SmallLU::ListNonzeros() {
   const int n = n_;
   lower_.resize(n);
   upper_.resize(n);
+  work_.resize(n);
+  row_of_.resize(n);
+  for (int i = 0; i < n; ++i) row_of_[i] = i;
+  Permute(row_of_.data());
   const double* a = lu_->data();
   for (int j = 0; j < n; ++j) {
     const std::uint64_t m = NonzeroBits(a + static_cast<size_t>(j) * n, n);
@@ -68,18 +72,15 @@ std::uint64_t SmallLU::NonzeroBits(const double* col, int n) {
   return m;
 }
 
-void SmallLU::Permute(double* y) const {
-  for (int k = 0; k < n_; ++k) std::swap(y[k], y[perm_[k]]);
-}
-
 void SmallLU::Unpermute(double* y) const {
   for (int k = n_ - 1; k >= 0; --k) std::swap(y[k], y[perm_[k]]);
 }
 
+// y − y is 0 for a finite y, NaN for ±∞ and NaN; their sum tells.
 bool SmallLU::HasNonFinite(const double* y, int n) {
-  bool bad = false;
-  for (int i = 0; i < n; ++i) bad |= !std::isfinite(y[i]);
-  return bad;
+  double sum = 0;
+  for (int i = 0; i < n; ++i) sum += y[i] - y[i];
+  return sum != 0;
 }
 
 namespace {
@@ -165,26 +166,29 @@ void SmallLU::SolveTransposeListed(double* y) const {
   }
 }
 
-// Non-finite entries (a skipped 0 · ∞ is NaN in the dense solve) are rare: there
-// the dense solve gives the reference bits.
+// The listed solves work in work_ and leave b as it was: the dense solve of a
+// non-finite result (a skipped 0 · ∞ is NaN in it) reads b again. row_of_ gathers
+// P b in one pass (the row swaps composed).
 void SmallLU::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
   if (!listed_) return DenseSolve(b, x);
-  saved_b_ = b;
-  if (x != &b) *x = b;
-  double* y = x->data();
-  Permute(y);
+  const int n = n_;
+  double* y = work_.data();
+  for (int i = 0; i < n; ++i) y[i] = b[row_of_[i]];
   SolveListed(y);
-  if (HasNonFinite(y, n_)) DenseSolve(saved_b_, x);
+  if (HasNonFinite(y, n)) return DenseSolve(b, x);
+  x->resize(n);
+  for (int i = 0; i < n; ++i) (*x)[i] = y[i];
 }
 
 void SmallLU::SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
   if (!listed_) return DenseSolveTranspose(b, x);
-  saved_b_ = b;
-  if (x != &b) *x = b;
-  double* y = x->data();
+  const int n = n_;
+  double* y = work_.data();
+  for (int i = 0; i < n; ++i) y[i] = b[i];
   SolveTransposeListed(y);
-  Unpermute(y);
-  if (HasNonFinite(y, n_)) DenseSolveTranspose(saved_b_, x);
+  if (HasNonFinite(y, n)) return DenseSolveTranspose(b, x);
+  x->resize(n);
+  for (int i = 0; i < n; ++i) (*x)[row_of_[i]] = y[i];  // Pᵀ, the swaps undone
 }
 
 void SmallLU::DenseSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace mechkin {
@@ -37,7 +38,10 @@ class SmallLU {
   void ListNonzeros();
   void SolveListed(double* y) const;
   void SolveTransposeListed(double* y) const;
-  void Permute(double* y) const;
+  template <typename T>
+  void Permute(T* y) const {
+    for (int k = 0; k < n_; ++k) std::swap(y[k], y[perm_[k]]);
+  }
   void Unpermute(double* y) const;
   static std::uint64_t NonzeroBits(const double* col, int n);
   static bool HasNonFinite(const double* y, int n);
@@ -50,7 +54,8 @@ class SmallLU {
   // Column j's nonzero rows of L (below the diagonal) as the bits of lower_[j], of U
   // (above it) as those of upper_[j]; listed for up to 64 unknowns.
   std::vector<std::uint64_t> lower_, upper_;
-  mutable Eigen::VectorXd saved_b_;  // the right-hand side, kept for the fallback
+  std::vector<int> row_of_;        // P b = b[row_of_[i]]: the row swaps composed
+  mutable Eigen::VectorXd work_;    // the listed solves' working vector
 };
 
 }  // namespace mechkin
