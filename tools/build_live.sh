@@ -37,7 +37,7 @@ io/live/live_api.cpp io/live/live_stubs.cpp io/plot_marks.cpp
 # sources of one folder compiled as one translation unit, which parses the headers
 # (Eigen, nlohmann_json, the layers below) once for the batch; the step's own layers
 # (math, constraints, kinematics) one source per unit, as natively. 39 units instead of
-# 100: the module took 6.6 min of CI's Release build beside the native compiles
+# 96: the module took 6.6 min of CI's Release build beside the native compiles
 # (2026-12-06). A batch file is rewritten only when its list changes.
 mkdir -p "$out/unity"
 batches=""

@@ -169,7 +169,7 @@ void SmallLU::SolveTransposeListed(double* y) const {
 // The listed solves work in work_ and leave b as it was: the dense solve of a
 // non-finite result (a skipped 0 · ∞ is NaN in it) reads b again. row_of_ gathers
 // P b in one pass (the row swaps composed).
-void SmallLU::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
+void SmallLU::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) {
   if (!listed_) return DenseSolve(b, x);
   const int n = n_;
   double* y = work_.data();
@@ -180,7 +180,7 @@ void SmallLU::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
   for (int i = 0; i < n; ++i) (*x)[i] = y[i];
 }
 
-void SmallLU::SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
+void SmallLU::SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) {
   if (!listed_) return DenseSolveTranspose(b, x);
   const int n = n_;
   double* y = work_.data();

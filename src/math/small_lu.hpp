@@ -25,9 +25,9 @@ class SmallLU {
   /// diagonal) and U. Returns false on an exactly zero or non-finite pivot.
   bool Compute(Eigen::MatrixXd* a);
   /// x = A⁻¹ b with the factors (x may alias b). Bit for bit DenseSolve's result.
-  void Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const;
+  void Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x);
   /// x = A⁻ᵀ b with the same factors. Bit for bit DenseSolveTranspose's result.
-  void SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x) const;
+  void SolveTranspose(const Eigen::VectorXd& b, Eigen::VectorXd* x);
   /// The same solves over every place of the factors (the reference the listed
   /// solves reproduce, and their fallback).
   void DenseSolve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const;
@@ -55,7 +55,7 @@ class SmallLU {
   // (above it) as those of upper_[j]; listed for up to 64 unknowns.
   std::vector<std::uint64_t> lower_, upper_;
   std::vector<int> row_of_;        // P b = b[row_of_[i]]: the row swaps composed
-  mutable Eigen::VectorXd work_;    // the listed solves' working vector
+  Eigen::VectorXd work_;           // the listed solves' working vector (one solve at a time)
 };
 
 }  // namespace mechkin
