@@ -301,11 +301,17 @@ def test_opens_playing_unless_paused(cli, tmp_path):
     assert view(cli, os.path.join(ROOT, "mechanisms", "planar-four-bar.json"), page).returncode == 0
     times = page_data(page)["times"]
     t0, span = times[0], times[-1] - times[0]
+    played = []
     for budget in (900, 1300):
         attrs, _ = browser.dump_dom(page, "", size=BIG, budget=budget)
-        assert attrs.get("data-playing") == "1" and float(attrs["data-time"]) > t0 + 1e-6 * span, (budget, attrs)
+        assert attrs.get("data-playing") == "1", (budget, attrs)
+        played.append(float(attrs["data-time"]))
         attrs, _ = browser.dump_dom(page, "paused", size=BIG, budget=budget)
         assert attrs.get("data-playing") == "0" and abs(float(attrs["data-time"]) - t0) <= 1e-8 * span, (budget, attrs)
+    # Playing, the clock has left t0 and reads differently 400 ms apart. A playing
+    # clock is back at t0 on the one frame where the loop wraps (the motion lasts 1 s,
+    # about a second after the page loads): one read may land there, not both.
+    assert max(played) > t0 + 1e-6 * span and played[0] != played[1], played
     still = [pixels(browser.screenshot(page, tmp_path / ("s%d.png" % k), "paused", size=BIG, budget=b))[VIEW3D]
              for k, b in enumerate((900, 1300))]
     assert (np.abs(still[0] - still[1]).sum(axis=2) > 60).sum() == 0

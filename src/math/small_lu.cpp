@@ -1,5 +1,11 @@
 #include "math/small_lu.hpp"
 
+// a − l·y as a rounded product and a rounded difference, never one fused operation:
+// the −0 argument below needs it (CMakeLists.txt also passes -ffp-contract=off).
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT OFF
+#endif
+
 #include <cmath>
 #include <utility>
 #if defined(__SSE2__)

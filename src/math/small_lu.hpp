@@ -9,7 +9,10 @@
 // a term a − 0·y changes nothing but the sign of a zero a, and only an element
 // holding −0 can be turned, so those take every term: the solves give the dense
 // ones' bits, and where the result has a non-finite entry (a skipped 0·∞ is NaN)
-// the dense solve is run instead (constraints.md §1.6).
+// the dense solve is run instead (constraints.md §1.6). This holds in IEEE double
+// arithmetic as C++ gives it by default: round to nearest, subnormals kept (no
+// flush-to-zero), products and differences rounded apart (small_lu.cpp is compiled
+// without contraction into fused multiply-adds).
 #pragma once
 
 #include <Eigen/Core>
