@@ -14,6 +14,43 @@
 
 namespace mechkin {
 
+namespace {
+
+bool IsNegativeZero(double v) { return v == 0 && std::signbit(v); }
+
+// The rows among `rows` (bits) where y holds −0.
+std::uint64_t NegativeZeros(const double* y, std::uint64_t rows) {
+  std::uint64_t kept = 0;
+  for (std::uint64_t m = rows; m; m &= m - 1) {
+    const int i = __builtin_ctzll(m);
+    kept |= static_cast<std::uint64_t>(IsNegativeZero(y[i])) << i;
+  }
+  return kept;
+}
+
+std::uint64_t RowsBelow(int j) { return ~((std::uint64_t{2} << j) - 1); }  // rows > j (j < 64)
+std::uint64_t RowsAbove(int j) { return (std::uint64_t{1} << j) - 1; }     // rows < j
+std::uint64_t AllRows(int n) { return n == 64 ? ~std::uint64_t{0} : RowsAbove(n); }
+
+// y_i −= col_i · yj for the rows `rows` (bits).
+void SubtractColumn(double* y, const double* col, double yj, std::uint64_t rows) {
+  for (std::uint64_t m = rows; m; m &= m - 1) {
+    const int i = __builtin_ctzll(m);
+    y[i] -= col[i] * yj;
+  }
+}
+
+// v − Σ col_i · y_i over the rows `rows` (bits), ascending.
+double SubtractDot(double v, const double* col, const double* y, std::uint64_t rows) {
+  for (std::uint64_t m = rows; m; m &= m - 1) {
+    const int i = __builtin_ctzll(m);
+    v -= col[i] * y[i];
+  }
+  return v;
+}
+
+}  // namespace
+
 bool SmallLU::Compute(Eigen::MatrixXd* a) {
   lu_ = a;
   listed_ = false;
@@ -61,8 +98,8 @@ void SmallLU::ListNonzeros() {
   const double* a = lu_->data();
   for (int j = 0; j < n; ++j) {
     const std::uint64_t m = NonzeroBits(a + static_cast<size_t>(j) * n, n);
-    upper_[j] = m & ((std::uint64_t{1} << j) - 1);
-    lower_[j] = j + 1 < 64 ? m & ~((std::uint64_t{2} << j) - 1) : 0;
+    upper_[j] = m & RowsAbove(j);
+    lower_[j] = m & RowsBelow(j);
   }
 }
 
@@ -89,42 +126,6 @@ bool SmallLU::HasNonFinite(const double* y, int n) {
   return sum != 0;
 }
 
-namespace {
-
-bool IsNegativeZero(double v) { return v == 0 && std::signbit(v); }
-
-// The rows among `rows` (bits) where y holds −0.
-std::uint64_t NegativeZeros(const double* y, std::uint64_t rows) {
-  std::uint64_t kept = 0;
-  for (std::uint64_t m = rows; m; m &= m - 1) {
-    const int i = __builtin_ctzll(m);
-    kept |= static_cast<std::uint64_t>(IsNegativeZero(y[i])) << i;
-  }
-  return kept;
-}
-
-std::uint64_t RowsBelow(int j) { return ~((std::uint64_t{2} << j) - 1); }  // rows > j (j < 64)
-std::uint64_t RowsAbove(int j) { return (std::uint64_t{1} << j) - 1; }     // rows < j
-std::uint64_t AllRows(int n) { return n == 64 ? ~std::uint64_t{0} : RowsAbove(n); }
-
-// y_i −= col_i · yj for the rows `rows` (bits).
-void SubtractColumn(double* y, const double* col, double yj, std::uint64_t rows) {
-  for (std::uint64_t m = rows; m; m &= m - 1) {
-    const int i = __builtin_ctzll(m);
-    y[i] -= col[i] * yj;
-  }
-}
-
-// v − Σ col_i · y_i over the rows `rows` (bits), ascending.
-double SubtractDot(double v, const double* col, const double* y, std::uint64_t rows) {
-  for (std::uint64_t m = rows; m; m &= m - 1) {
-    const int i = __builtin_ctzll(m);
-    v -= col[i] * y[i];
-  }
-  return v;
-}
-
-}  // namespace
 
 // Column-oriented substitution as DenseSolve, each element's updates in the same
 // order (columns ascending for L, descending for U), the zero terms a − (±0)
