@@ -13,6 +13,7 @@
 #include "mobility/mobility.hpp"
 #include "analysis/load.hpp"
 #include "kinematics/newton.hpp"
+#include "kinematics/workspace.hpp"
 
 namespace mechkin {
 namespace {
@@ -65,32 +66,50 @@ void Factorization(benchmark::State& st, const std::string& which) {
   for (auto _ : st) benchmark::DoNotOptimize(newton.Factorize(s));
 }
 
-// The dense solves of one step on the slider-crank's Jacobian at t = 0.3 s (mid-motion,
-// a dense right-hand side): back-solve, transposed solve, the two condition estimates.
-void DenseSolves(benchmark::State& st, int which) {
+// One step's parts on the slider-crank at t = 0.3 s (mid-motion, a dense right-hand
+// side). DenseSolves: back-solve, transposed solve, the two condition estimates, the
+// factorization. StepParts: Φ, the Jacobian alone, the right-hand sides of the three
+// derivative orders, the three orders solved (RHS + back-solve each), ‖J_s‖_F.
+void AtMidMotion(benchmark::State& st, int which) {
   Model m = LoadOrDie(std::string(MECHKIN_SOURCE_DIR) + "/mechanisms/spatial-slider-crank.json");
   m.analysis->end = 0.3;
   m.analysis->steps = 108;
   const ConstraintSystem sys(m, true);
   SystemState pose(sys);
   RunKinematicAnalysis(m, AnalysisOptions{}, [&](const SystemState& s, const StepDiagnostics&) { pose = s; return true; });
-  NewtonSolver newton(sys, AllRows(sys));
+  KinematicsWorkspace ws(sys, AllRows(sys), WorkspaceOptions{});
+  NewtonSolver& newton = ws.newton();
   newton.Factorize(pose);
-  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(6 * sys.num_bodies(), 1, 2), x(b.size());
+  SparseJacobian jac(sys, Formulation::Omega, AllRows(sys));
+  jac.Fill(sys, pose);
+  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(6 * sys.num_bodies(), 1, 2), x(b.size()), v(sys.num_rows());
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(b.size());
   for (auto _ : st) {
     if (which == 0) newton.BackSolve(b, &x);
     if (which == 1) newton.SolveLinearTranspose(b, &x);
     if (which == 2) benchmark::DoNotOptimize(newton.ConditionEstimate());
     if (which == 3) benchmark::DoNotOptimize(newton.SharperConditionEstimate(2));
     if (which == 4) newton.Factorize(pose);
+    if (which == 5) CalcPhi(sys, pose, &v);
+    if (which == 6) jac.Fill(sys, pose);
+    if (which == 7)
+      for (int k = 1; k <= 3; ++k) CalcRhs(sys, pose, k, Formulation::Omega, &v);
+    if (which == 8) SolveDerivatives(ws, 3, &pose);
+    if (which == 9) benchmark::DoNotOptimize(DimensionlessNorm(jac.matrix(), newton.scales(), ones));
     benchmark::DoNotOptimize(x.data());
+    benchmark::DoNotOptimize(v.data());
   }
 }
-BENCHMARK_CAPTURE(DenseSolves, back_solve, 0);
-BENCHMARK_CAPTURE(DenseSolves, transposed_solve, 1);
-BENCHMARK_CAPTURE(DenseSolves, condition_estimate, 2);
-BENCHMARK_CAPTURE(DenseSolves, sharper_estimate_2, 3);
-BENCHMARK_CAPTURE(DenseSolves, factorize, 4);
+BENCHMARK_CAPTURE(AtMidMotion, DenseSolves/back_solve, 0);
+BENCHMARK_CAPTURE(AtMidMotion, DenseSolves/transposed_solve, 1);
+BENCHMARK_CAPTURE(AtMidMotion, DenseSolves/condition_estimate, 2);
+BENCHMARK_CAPTURE(AtMidMotion, DenseSolves/sharper_estimate_2, 3);
+BENCHMARK_CAPTURE(AtMidMotion, DenseSolves/factorize, 4);
+BENCHMARK_CAPTURE(AtMidMotion, StepParts/phi, 5);
+BENCHMARK_CAPTURE(AtMidMotion, StepParts/jacobian_fill, 6);
+BENCHMARK_CAPTURE(AtMidMotion, StepParts/rhs_orders_1_to_3, 7);
+BENCHMARK_CAPTURE(AtMidMotion, StepParts/derivatives_1_to_3, 8);
+BENCHMARK_CAPTURE(AtMidMotion, StepParts/dimensionless_norm, 9);
 
 // The whole `check` report (load + rank mobility, redundancy, idle freedoms, driving
 // status, suggestions) of every bundled mechanism: no time analysis needed.

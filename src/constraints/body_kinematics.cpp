@@ -2,6 +2,28 @@
 
 namespace mechkin {
 
+namespace {
+
+// M + ã, entry by entry: the same sums as `M + Tilde(a)` (x + 0 and x + (−y) kept, so
+// the signs of zeros too), without the temporary. GCC writes Tilde's nine entries to the
+// stack one by one and Eigen reads them back in pairs; a load that spans two pending
+// stores waits until both retire, and in CompleteOrder that stall took 70 % of the time.
+Mat3 PlusTilde(const Mat3& m, const Vec3& a) {
+  Mat3 t;
+  t(0, 0) = m(0, 0) + 0.0;
+  t(1, 0) = m(1, 0) + a.z();
+  t(2, 0) = m(2, 0) + -a.y();
+  t(0, 1) = m(0, 1) + -a.z();
+  t(1, 1) = m(1, 1) + 0.0;
+  t(2, 1) = m(2, 1) + a.x();
+  t(0, 2) = m(0, 2) + a.y();
+  t(1, 2) = m(1, 2) + -a.x();
+  t(2, 2) = m(2, 2) + 0.0;
+  return t;
+}
+
+}  // namespace
+
 void BodyKinematics::SetPose(const Vec3& position, const Vec4& euler) {
   p = euler;
   A = CalcA(p);
@@ -44,7 +66,7 @@ void BodyKinematics::UpdateDerived(int order) {
 
 void BodyKinematics::CompleteOrder(int k) {
   if (k < 1) return;
-  D[k] = B[k] + Tilde(w[k - 1]);
+  D[k] = PlusTilde(B[k], w[k - 1]);
   AD[k] = A * D[k];
 }
 

@@ -8,8 +8,8 @@ void Dot1Constraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) 
   const Vec3 ai = in.i.A * a_i_, aj = in.j.A * a_j_;
   J->r_i.row(0).setZero();
   J->r_j.row(0).setZero();
-  J->pi_i.row(0) = -aj.transpose() * in.i.A * Tilde(a_i_);
-  J->pi_j.row(0) = -ai.transpose() * in.j.A * Tilde(a_j_);
+  J->pi_i.row(0) = -aj.transpose() * in.i.A * tilde_a_i_;
+  J->pi_j.row(0) = -ai.transpose() * in.j.A * tilde_a_j_;
 }
 
 // RHS_k = −[Σ_{m=1}^{k−1} binom(k,m) a_i^(m)·a_j^(k−m) + bias(a_i^(k))·a_j + a_i·bias(a_j^(k))];

@@ -9,8 +9,8 @@ void Dot2Constraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) 
   const Vec3 d = RelativePointDerivative(in, s_i_, s_j_, 0);
   J->r_i.row(0) = -ai.transpose();
   J->r_j.row(0) = ai.transpose();
-  J->pi_i.row(0) = a_i_.transpose() * Tilde(s_i_) - d.transpose() * in.i.A * Tilde(a_i_);
-  J->pi_j.row(0) = -ai.transpose() * in.j.A * Tilde(s_j_);
+  J->pi_i.row(0) = a_i_.transpose() * tilde_s_i_ - d.transpose() * in.i.A * tilde_a_i_;
+  J->pi_j.row(0) = -ai.transpose() * in.j.A * tilde_s_j_;
 }
 
 // RHS_k = −[Σ_{m=1}^{k−1} binom(k,m) a_i^(m)·d^(k−m) + bias(a_i^(k))·d + a_i·bias(d^(k))];

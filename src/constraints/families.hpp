@@ -21,7 +21,7 @@ constexpr double kBinomial[5][5] = {{1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4,
 class SphericalConstraint : public Constraint {
  public:
   SphericalConstraint(BodyIndex i, BodyIndex j, const Vec3& s_i, const Vec3& s_j)
-      : Constraint(i, j, 3), s_i_(s_i), s_j_(s_j) {}
+      : Constraint(i, j, 3), s_i_(s_i), s_j_(s_j), tilde_s_i_(Tilde(s_i)), tilde_s_j_(Tilde(s_j)) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
@@ -42,6 +42,10 @@ class SphericalConstraint : public Constraint {
 
  private:
   Vec3 s_i_, s_j_;
+  // s̃'_i, s̃'_j built once: a Tilde made in the Jacobian is written to the stack entry by
+  // entry and read back in pairs, and each such load waits for two pending stores (the
+  // Jacobian fill spent about a third of this family's time there).
+  Mat3 tilde_s_i_, tilde_s_j_;
 };
 
 /// §3.2 SPH_SPH: dᵀd − L² = 0; with a driver function, §3.7 3DRDD: dᵀd − f(t)² = 0.
@@ -81,7 +85,7 @@ class DistanceConstraint : public Constraint {
 class Dot1Constraint : public Constraint {
  public:
   Dot1Constraint(BodyIndex i, BodyIndex j, const Vec3& a_i, const Vec3& a_j)
-      : Constraint(i, j, 1), a_i_(a_i), a_j_(a_j) {}
+      : Constraint(i, j, 1), a_i_(a_i), a_j_(a_j), tilde_a_i_(Tilde(a_i)), tilde_a_j_(Tilde(a_j)) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
@@ -100,6 +104,7 @@ class Dot1Constraint : public Constraint {
 
  private:
   Vec3 a_i_, a_j_;
+  Mat3 tilde_a_i_, tilde_a_j_;  // ã'_i, ã'_j for the Jacobian (built once: see SphericalConstraint)
 };
 
 /// §3.4 DOT_2: a_iᵀ d_ij = 0, d_ij = r^P_j − r^P_i. Also the shared core of D2DD (§3.8)
@@ -107,7 +112,8 @@ class Dot1Constraint : public Constraint {
 class Dot2Constraint : public Constraint {
  public:
   Dot2Constraint(BodyIndex i, BodyIndex j, const Vec3& a_i, const Vec3& s_i, const Vec3& s_j)
-      : Constraint(i, j, 1), a_i_(a_i), s_i_(s_i), s_j_(s_j) {}
+      : Constraint(i, j, 1), a_i_(a_i), s_i_(s_i), s_j_(s_j), tilde_a_i_(Tilde(a_i)), tilde_s_i_(Tilde(s_i)),
+        tilde_s_j_(Tilde(s_j)) {}
   void CalcPhi(const ConstraintInput& in, double* phi) const override { Phi(in.i, in.j, in.f.c[0], in.angle_ref, phi); }
   void CalcPhiExtended(const ExtendedInput& in, Real* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
   void CalcPhiJet(const JetInput& in, ExtendedJet* phi) const override { Phi(in.i, in.j, in.f, in.angle_ref, phi); }
@@ -127,6 +133,7 @@ class Dot2Constraint : public Constraint {
 
  private:
   Vec3 a_i_, s_i_, s_j_;
+  Mat3 tilde_a_i_, tilde_s_i_, tilde_s_j_;  // for the Jacobian (built once: see SphericalConstraint)
 };
 
 /// §3.8 D2DD: a_iᵀ d_ij / L − f(t) = 0 (translation driver; a_i = h_i, L = 1).

@@ -7,8 +7,8 @@ namespace mechkin {
 void SphericalConstraint::CalcJacobian(const ConstraintInput& in, JacobianBlocks* J) const {
   J->r_i = -Mat3::Identity();
   J->r_j = Mat3::Identity();
-  J->pi_i = in.i.A * Tilde(s_i_);
-  J->pi_j = -in.j.A * Tilde(s_j_);
+  J->pi_i = in.i.A * tilde_s_i_;
+  J->pi_j = -in.j.A * tilde_s_j_;
 }
 
 // RHS_k = A_i B_k s'_i − A_j B_k s'_j: γ = A_iω̃ω̃s'_i − A_jω̃ω̃s'_j, η = A_iH's'_i − A_jH's'_j,
