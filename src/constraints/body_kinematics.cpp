@@ -72,8 +72,12 @@ void BodyKinematics::CompleteOrder(int k) {
 
 void BodyKinematics::PrepareOrder(int k) {
   if (k == 1) {
-    D[0] = B[0] = Mat3::Identity();
-    AD[0] = AB[0] = A;
+    // One assignment each: a chained one reads back the matrix it just stored (a
+    // store-forwarding stall, as in PlusTilde).
+    D[0].setIdentity();
+    B[0].setIdentity();
+    AD[0] = A;
+    AB[0] = A;
     B[1].setZero();
     AB[1].setZero();
     return;
