@@ -1,5 +1,7 @@
 #include "constraints/system.hpp"
 
+#include <type_traits>
+
 #include <stdexcept>
 
 #include "constraints/couplers.hpp"
@@ -333,35 +335,58 @@ SparseJacobian::SparseJacobian(const ConstraintSystem& sys, Formulation f, const
   if (f == Formulation::P)
     for (int b = 0; b < n; ++b)
       for (int col = 3; col < 7; ++col) eul_slot_.push_back(&J_.coeffRef(static_cast<int>(rows.size()) + b, 7 * b + col));
+  if (f == Formulation::Omega) ListCopies(sys);
+}
+
+// The ω' version's values straight from the blocks: the places in JacobianBlocks (a
+// standard-layout struct of double matrices) counted in doubles from its start.
+void SparseJacobian::ListCopies(const ConstraintSystem& sys) {
+  static_assert(std::is_standard_layout<JacobianBlocks>::value, "JacobianBlocks is addressed by offsets");
+  const JacobianBlocks probe;
+  const auto offset = [&](const double& v) {
+    return static_cast<int>((reinterpret_cast<const char*>(&v) - reinterpret_cast<const char*>(&probe)) / sizeof(double));
+  };
+  const auto& entries = sys.entries();
+  for (size_t e = 0; e < entries.size(); ++e) {
+    const Constraint& c = *entries[e].constraint;
+    copy_start_.push_back(static_cast<int>(copies_.size()));
+    double* const* slot = slot_.data() + slot_start_[e];
+    for (int r = 0; r < c.size(); ++r)
+      for (int side = 0; side < c.num_sides(); ++side)
+        for (int col = 0; col < 6; ++col, ++slot)
+          if (*slot) copies_.push_back({offset(col < 3 ? probe.R(side)(r, col) : probe.Pi(side)(r, col - 3)), *slot});
+  }
+  copy_start_.push_back(static_cast<int>(copies_.size()));
 }
 
 void SparseJacobian::Fill(const ConstraintSystem& sys, const SystemState& s) {
+  if (f_ == Formulation::P) return FillPVersion(sys, s);
   const auto& entries = sys.entries();
-  const int nc = f_ == Formulation::Omega ? 6 : 7;
+  for (size_t e = 0; e < entries.size(); ++e) {
+    JacobianBlocks B;
+    entries[e].constraint->CalcJacobian(MakeInput(sys, s, e), &B);
+    const double* values = reinterpret_cast<const double*>(&B);
+    for (int k = copy_start_[e]; k < copy_start_[e + 1]; ++k) *copies_[k].to = values[copies_[k].from];
+  }
+}
+
+void SparseJacobian::FillPVersion(const ConstraintSystem& sys, const SystemState& s) {
+  const auto& entries = sys.entries();
   for (size_t e = 0; e < entries.size(); ++e) {
     const Constraint& c = *entries[e].constraint;
     const ConstraintInput in = MakeInput(sys, s, e);
     JacobianBlocks B;
     c.CalcJacobian(in, &B);
     Eigen::Matrix<double, kMaxRows, 4> P[kMaxSides];
-    if (f_ == Formulation::P)
-      for (int side = 0; side < c.num_sides(); ++side) P[side] = PVersionBlock(in, B, side);
+    for (int side = 0; side < c.num_sides(); ++side) P[side] = PVersionBlock(in, B, side);
     double* const* slot = slot_.data() + slot_start_[e];
-    for (int r = 0; r < c.size(); ++r) {
-      for (int side = 0; side < c.num_sides(); ++side) {
-        const RowBlock& Br = B.R(side);
-        const RowBlock& Bp = B.Pi(side);
-        const auto& Pp = P[side];
-        for (int col = 0; col < nc; ++col, ++slot) {
-          if (!*slot) continue;
-          **slot = col < 3 ? Br(r, col) : (f_ == Formulation::Omega ? Bp(r, col - 3) : Pp(r, col - 3));
-        }
-      }
-    }
+    for (int r = 0; r < c.size(); ++r)
+      for (int side = 0; side < c.num_sides(); ++side)
+        for (int col = 0; col < 7; ++col, ++slot)
+          if (*slot) **slot = col < 3 ? B.R(side)(r, col) : P[side](r, col - 3);
   }
-  if (f_ == Formulation::P)
-    for (size_t b = 0; b < s.bodies.size(); ++b)
-      for (int col = 0; col < 4; ++col) *eul_slot_[4 * b + col] = 2 * s.bodies[b].p[col];
+  for (size_t b = 0; b < s.bodies.size(); ++b)
+    for (int col = 0; col < 4; ++col) *eul_slot_[4 * b + col] = 2 * s.bodies[b].p[col];
 }
 
 }  // namespace mechkin

@@ -127,7 +127,17 @@ class SparseJacobian {
   std::vector<double*> slot_;         // per (entry, local row, 12 or 14 columns) pointer into J_ values
   std::vector<int> slot_start_;       // per entry
   std::vector<double*> eul_slot_;     // p version: 4 per body
+  // ω' version: per entry (from copy_start_[e]), each Jacobian value to write: its
+  // place in the entry's JacobianBlocks (in doubles from the start) and in J_.
+  struct Copy {
+    int from;
+    double* to;
+  };
+  std::vector<Copy> copies_;
+  std::vector<int> copy_start_;
   Eigen::SparseMatrix<double> J_;
+  void ListCopies(const ConstraintSystem& sys);
+  void FillPVersion(const ConstraintSystem& sys, const SystemState& s);
 };
 
 }  // namespace mechkin
