@@ -7,7 +7,8 @@ namespace {
 // M + ã, entry by entry: the same sums as `M + Tilde(a)` (x + 0 and x + (−y) kept, so
 // the signs of zeros too), without the temporary. GCC writes Tilde's nine entries to the
 // stack one by one and Eigen reads them back in pairs; a load that spans two pending
-// stores waits until both retire, and in CompleteOrder that stall took 70 % of the time.
+// stores waits until both retire (`perf annotate` of CompleteOrder under
+// `bench_step --benchmark_filter=StepParts/derivatives` showed most samples there).
 Mat3 PlusTilde(const Mat3& m, const Vec3& a) {
   Mat3 t;
   t(0, 0) = m(0, 0) + 0.0;

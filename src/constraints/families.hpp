@@ -43,8 +43,7 @@ class SphericalConstraint : public Constraint {
  private:
   Vec3 s_i_, s_j_;
   // s̃'_i, s̃'_j built once: a Tilde made in the Jacobian is written to the stack entry by
-  // entry and read back in pairs, and each such load waits for two pending stores (the
-  // Jacobian fill spent about a third of this family's time there).
+  // entry and read back in pairs, and each such load waits for two pending stores.
   Mat3 tilde_s_i_, tilde_s_j_;
 };
 

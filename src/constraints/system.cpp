@@ -1,8 +1,7 @@
 #include "constraints/system.hpp"
 
-#include <type_traits>
-
 #include <stdexcept>
+#include <type_traits>
 
 #include "constraints/couplers.hpp"
 

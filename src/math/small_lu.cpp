@@ -130,7 +130,6 @@ bool SmallLU::HasNonFinite(const double* y, int n) {
   return (sum[0] + sum[1]) + (sum[2] + sum[3]) != 0;
 }
 
-
 // Column-oriented substitution as DenseSolve, each element's updates in the same
 // order (columns ascending for L, descending for U), the zero terms a − (±0)
 // skipped. That is exact except for an element holding −0, which −(−0) turns to +0;
