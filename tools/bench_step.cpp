@@ -85,17 +85,20 @@ void AtMidMotion(benchmark::State& st, int which) {
   Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(6 * sys.num_bodies(), 1, 2), x(b.size()), v(sys.num_rows());
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(b.size());
   for (auto _ : st) {
-    if (which == 0) newton.BackSolve(b, &x);
-    if (which == 1) newton.SolveLinearTranspose(b, &x);
-    if (which == 2) benchmark::DoNotOptimize(newton.ConditionEstimate());
-    if (which == 3) benchmark::DoNotOptimize(newton.SharperConditionEstimate(2));
-    if (which == 4) newton.Factorize(pose);
-    if (which == 5) CalcPhi(sys, pose, &v);
-    if (which == 6) jac.Fill(sys, pose);
-    if (which == 7)
-      for (int k = 1; k <= 3; ++k) CalcRhs(sys, pose, k, Formulation::Omega, &v);
-    if (which == 8) SolveDerivatives(ws, 3, &pose);
-    if (which == 9) benchmark::DoNotOptimize(DimensionlessNorm(jac.matrix(), newton.scales(), ones));
+    switch (which) {
+      case 0: newton.BackSolve(b, &x); break;
+      case 1: newton.SolveLinearTranspose(b, &x); break;
+      case 2: benchmark::DoNotOptimize(newton.ConditionEstimate()); break;
+      case 3: benchmark::DoNotOptimize(newton.SharperConditionEstimate(2)); break;
+      case 4: newton.Factorize(pose); break;
+      case 5: CalcPhi(sys, pose, &v); break;
+      case 6: jac.Fill(sys, pose); break;
+      case 7:
+        for (int k = 1; k <= 3; ++k) CalcRhs(sys, pose, k, Formulation::Omega, &v);
+        break;
+      case 8: SolveDerivatives(ws, 3, &pose); break;
+      case 9: benchmark::DoNotOptimize(DimensionlessNorm(jac.matrix(), newton.scales(), ones)); break;
+    }
     benchmark::DoNotOptimize(x.data());
     benchmark::DoNotOptimize(v.data());
   }

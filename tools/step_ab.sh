@@ -17,7 +17,8 @@ trap 'rm -rf "$out"' EXIT
 for _ in $(seq "$rounds"); do
   line=""
   for bin in "$@"; do
-    step=$("$bin" run "$file" -o "$out/table.csv" --stats 2>&1 | sed -n 's/^per step: \([0-9.]*\) us solve.*/\1/p')
+    # A failed run prints no per-step line and counts as nan (it must not end the script).
+    step=$({ "$bin" run "$file" -o "$out/table.csv" --stats 2>&1 || true; } | sed -n 's/^per step: \([0-9.]*\) us solve.*/\1/p')
     line="$line ${step:-nan}"
   done
   echo "$line"
